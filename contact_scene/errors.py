@@ -1,0 +1,65 @@
+"""The one error type a bad scene raises, and the checks that raise it.
+
+Every message names the offending field (dotted, as in the scene file) and the
+allowed range, so that the CLI can print it as is and exit with status 2.
+"""
+from __future__ import annotations
+
+import math
+import numbers
+
+__all__ = ["SceneError", "check_real", "check_int", "check_choice"]
+
+
+class SceneError(ValueError):
+    """An invalid scene, scene file or discretisation setting.
+
+    ``field`` is the dotted name of the offending entry (``material.youngs_modulus``).
+    """
+
+    def __init__(self, field: str, message: str):
+        self.field = field
+        super().__init__(f"{field}: {message}")
+
+
+def _describe(lo, hi, lo_open, hi_open) -> str:
+    if lo is not None and hi is not None:
+        return f"{'(' if lo_open else '['}{lo:g}, {hi:g}{')' if hi_open else ']'}"
+    if lo is not None:
+        return f"{'>' if lo_open else '>='} {lo:g}"
+    if hi is not None:
+        return f"{'<' if hi_open else '<='} {hi:g}"
+    return "any finite number"
+
+
+def check_real(field: str, value, *, lo=None, hi=None, lo_open=False, hi_open=False) -> float:
+    """Return ``value`` as a finite float inside the given interval, or raise SceneError."""
+    allowed = _describe(lo, hi, lo_open, hi_open)
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise SceneError(field, f"must be a number in {allowed} (got {value!r})")
+    v = float(value)
+    if not math.isfinite(v):
+        raise SceneError(field, f"must be a finite number in {allowed} (got {value!r})")
+    bad = (
+        (lo is not None and (v <= lo if lo_open else v < lo))
+        or (hi is not None and (v >= hi if hi_open else v > hi))
+    )
+    if bad:
+        raise SceneError(field, f"must be in {allowed} (got {v:g})")
+    return v
+
+
+def check_int(field: str, value, *, lo=None, hi=None) -> int:
+    allowed = _describe(lo, hi, False, False)
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise SceneError(field, f"must be a whole number {allowed} (got {value!r})")
+    v = int(value)
+    if (lo is not None and v < lo) or (hi is not None and v > hi):
+        raise SceneError(field, f"must be a whole number {allowed} (got {v})")
+    return v
+
+
+def check_choice(field: str, value, choices) -> str:
+    if not isinstance(value, str) or value not in choices:
+        raise SceneError(field, f"must be one of {', '.join(map(repr, sorted(choices)))} (got {value!r})")
+    return value

@@ -1,0 +1,303 @@
+"""Scene files (TOML) and the scene summary.
+
+Schema (every key is checked; unknown keys are errors)::
+
+    name = "Kendall circle"            # optional
+    [indenter]
+    shape = "circle"                   # see SHAPE_KEYS for every shape and its keys
+    radius = 1.0
+    rotation_deg = 0.0                 # any shape: rotate about its centroid
+    mirror = false                     # any shape: reflect x -> -x about its centroid
+    profile = "flat"                   # flat | paraboloid | sphere (profile_radius) | cone (half_angle_deg)
+    [material]
+    model = "homogeneous"              # youngs_modulus, poisson_ratio
+    # model = "power_law_graded"       # surface_modulus, reference_depth, exponent
+    [adhesion]
+    work_of_adhesion = 1.0             # range, potential: energy method only
+    [loading]                          # optional: press_approach | press_force, turning_points, pull_limit
+    [outputs]                          # optional: curve, snapshots, fields
+
+Composite shapes nest tables: ``shape = "union"`` with ``parts = [{shape = "circle", ...}]``;
+``shape = "difference"`` with ``base = {...}`` and ``cuts = [{...}]``.  An image face gives
+``path`` relative to the scene file.
+"""
+from __future__ import annotations
+
+import math
+import tomllib
+from pathlib import Path
+
+from . import theory
+from .errors import SceneError
+from .materials import Homogeneous, PowerLawGraded
+from .profiles import Cone, Flat, Paraboloid, Sphere
+from .scene import Adhesion, Indenter, Loading, Outputs, Scene
+from . import shapes as S
+
+__all__ = ["load_scene", "scene_from_dict", "shape_from_dict", "summarise", "SHAPE_KEYS"]
+
+#: shape name -> (required keys, optional keys)
+SHAPE_KEYS: dict[str, tuple[set, set]] = {
+    "circle": ({"radius"}, {"center"}),
+    "ellipse": ({"semi_major", "semi_minor"}, {"center"}),
+    "square": ({"side"}, {"center"}),
+    "rectangle": ({"width", "height"}, {"center"}),
+    "triangle": (set(), {"side", "vertices"}),
+    "regular_polygon": ({"n_sides", "circumradius"}, {"center"}),
+    "star": ({"n_rays", "outer_radius", "inner_radius"}, {"center"}),
+    "polygon": ({"vertices"}, set()),
+    "power_law_star": ({"n_rays", "core_radius", "outer_radius"}, {"samples", "center"}),
+    "two_circles": ({"radius1", "radius2", "distance"}, set()),
+    "square_with_faults": ({"side"}, {"v_cut_depth", "v_cut_width", "line_cuts", "line_cut_length", "cut_width"}),
+    "brush": ({"side", "pillar_radius"}, {"layout", "pitch", "count", "seed"}),
+    "image": ({"path", "pixel_size"}, {"threshold", "invert"}),
+    "union": ({"parts"}, set()),
+    "difference": ({"base", "cuts"}, set()),
+}
+_COMMON = {"shape", "rotation_deg", "mirror"}
+_PROFILE_KEYS = {"profile", "profile_radius", "half_angle_deg"}
+_NATIVE_ROTATION = {"ellipse", "square", "rectangle", "regular_polygon", "star", "power_law_star"}
+
+
+def _check_keys(section: str, d: dict, allowed: set, required: set = frozenset()):
+    if not isinstance(d, dict):
+        raise SceneError(section, f"must be a table (got {type(d).__name__})")
+    for k in d:
+        if k not in allowed:
+            raise SceneError(f"{section}.{k}", f"unknown key; allowed keys: {', '.join(sorted(allowed))}")
+    for k in required:
+        if k not in d:
+            raise SceneError(f"{section}.{k}", "is required")
+
+
+def shape_from_dict(d: dict, *, base_dir: Path | None = None, section: str = "indenter") -> S.Shape:
+    if not isinstance(d, dict) or "shape" not in d:
+        raise SceneError(f"{section}.shape", f"is required; one of: {', '.join(sorted(SHAPE_KEYS))}")
+    kind = d["shape"]
+    if not isinstance(kind, str) or kind not in SHAPE_KEYS:
+        raise SceneError(f"{section}.shape", f"unknown shape {kind!r}; one of: {', '.join(sorted(SHAPE_KEYS))}")
+    required, optional = SHAPE_KEYS[kind]
+    _check_keys(section, d, required | optional | _COMMON | (_PROFILE_KEYS if section == "indenter" else set()), required)
+    kw = {k: d[k] for k in required | optional if k in d}
+    if "center" in kw:
+        kw["center"] = tuple(kw["center"]) if isinstance(kw["center"], list) else kw["center"]
+    rot = d.get("rotation_deg", 0.0)
+    if kind in _NATIVE_ROTATION and "rotation_deg" in d:
+        kw["rotation_deg"] = rot
+        rot = 0.0
+    try:
+        shape = _build(kind, kw, base_dir, section)
+    except TypeError as exc:  # a wrongly typed nested value
+        raise SceneError(section, f"invalid parameters for shape {kind!r}: {exc}") from None
+    mirror = d.get("mirror", False)
+    if not isinstance(mirror, bool):
+        raise SceneError(f"{section}.mirror", f"must be true or false (got {mirror!r})")
+    if mirror:
+        shape = shape.mirrored()
+    if rot:
+        from .errors import check_real
+        shape = shape.rotated(check_real(f"{section}.rotation_deg", rot))
+    return shape
+
+
+def _build(kind, kw, base_dir, section):
+    if kind == "circle":
+        return S.Circle(**kw)
+    if kind == "ellipse":
+        return S.Ellipse(**kw)
+    if kind == "square":
+        return S.Square(**kw)
+    if kind == "rectangle":
+        return S.Rectangle(**kw)
+    if kind == "triangle":
+        if ("side" in kw) == ("vertices" in kw):
+            raise SceneError(f"{section}.side", "give either side (equilateral) or vertices")
+        if "side" in kw:
+            return S.Triangle.equilateral(kw["side"])
+        return S.Triangle(_vertices(kw["vertices"], section))
+    if kind == "regular_polygon":
+        return S.RegularPolygon(**kw)
+    if kind == "star":
+        return S.Star(**kw)
+    if kind == "polygon":
+        return S.Polygon(_vertices(kw["vertices"], section))
+    if kind == "power_law_star":
+        return S.PowerLawStar(**kw)
+    if kind == "two_circles":
+        return S.TwoCircles(**kw)
+    if kind == "square_with_faults":
+        return S.SquareWithFaults(**kw)
+    if kind == "brush":
+        return S.Brush(**kw)
+    if kind == "image":
+        p = kw.pop("path")
+        if not isinstance(p, str):
+            raise SceneError(f"{section}.path", "must be a file name")
+        path = Path(p) if base_dir is None or Path(p).is_absolute() else base_dir / p
+        return S.ImageMask(path=str(path), **kw)
+    if kind == "union":
+        parts = kw["parts"]
+        if not isinstance(parts, list) or not parts:
+            raise SceneError(f"{section}.parts", "must be a non-empty list of shape tables")
+        return S.Union(tuple(shape_from_dict(p, base_dir=base_dir, section=f"{section}.parts[{i}]") for i, p in enumerate(parts)))
+    if kind == "difference":
+        cuts = kw["cuts"]
+        if not isinstance(cuts, list):
+            raise SceneError(f"{section}.cuts", "must be a list of shape tables")
+        return S.Difference(
+            shape_from_dict(kw["base"], base_dir=base_dir, section=f"{section}.base"),
+            tuple(shape_from_dict(c, base_dir=base_dir, section=f"{section}.cuts[{i}]") for i, c in enumerate(cuts)),
+        )
+    raise AssertionError(kind)  # pragma: no cover
+
+
+def _vertices(v, section):
+    if not isinstance(v, list) or not all(isinstance(p, list) and len(p) == 2 for p in v):
+        raise SceneError(f"{section}.vertices", "must be a list of [x, y] pairs")
+    for p in v:
+        for c in p:
+            if isinstance(c, bool) or not isinstance(c, (int, float)):
+                raise SceneError(f"{section}.vertices", f"coordinates must be numbers (got {c!r})")
+    return tuple(tuple(p) for p in v)
+
+
+def _profile_from_dict(d: dict):
+    kind = d.get("profile", "flat")
+    if not isinstance(kind, str):
+        raise SceneError("indenter.profile", f"must be one of: cone, flat, paraboloid, sphere (got {kind!r})")
+    if kind == "flat":
+        for k in ("profile_radius", "half_angle_deg"):
+            if k in d:
+                raise SceneError(f"indenter.{k}", "only applies to a curved profile")
+        return Flat()
+    if kind in ("sphere", "paraboloid"):
+        if "profile_radius" not in d:
+            raise SceneError("indenter.profile_radius", f"is required for profile {kind!r}")
+        return (Sphere if kind == "sphere" else Paraboloid)(d["profile_radius"])
+    if kind == "cone":
+        if "half_angle_deg" not in d:
+            raise SceneError("indenter.half_angle_deg", "is required for profile 'cone'")
+        return Cone(d["half_angle_deg"])
+    raise SceneError("indenter.profile", f"unknown profile {kind!r}; one of: cone, flat, paraboloid, sphere")
+
+
+def _material_from_dict(d: dict):
+    model = d.get("model") if isinstance(d, dict) else None
+    if not isinstance(model, str):
+        model = repr(model)
+    if model == "homogeneous":
+        _check_keys("material", d, {"model", "youngs_modulus", "poisson_ratio"}, {"youngs_modulus", "poisson_ratio"})
+        return Homogeneous(d["youngs_modulus"], d["poisson_ratio"])
+    if model == "power_law_graded":
+        _check_keys("material", d, {"model", "surface_modulus", "reference_depth", "exponent"},
+                    {"surface_modulus", "reference_depth", "exponent"})
+        return PowerLawGraded(d["surface_modulus"], d["reference_depth"], d["exponent"])
+    raise SceneError("material.model", f"must be 'homogeneous' or 'power_law_graded' (got {model!r})")
+
+
+def scene_from_dict(d: dict, *, base_dir: Path | None = None) -> Scene:
+    _check_keys("scene", d, {"name", "description", "indenter", "material", "adhesion", "loading", "outputs"},
+                {"indenter", "material", "adhesion"})
+    name = d.get("name", "")
+    if not isinstance(name, str):
+        raise SceneError("name", "must be a string")
+    ind = d["indenter"]
+    shape = shape_from_dict(ind, base_dir=base_dir)
+    indenter = Indenter(shape, _profile_from_dict(ind))
+    material = _material_from_dict(d["material"])
+    a = d["adhesion"]
+    _check_keys("adhesion", a, {"work_of_adhesion", "range", "potential"}, {"work_of_adhesion"})
+    adhesion = Adhesion(a["work_of_adhesion"], a.get("range"), a.get("potential", "exponential"))
+    lo = d.get("loading", {})
+    _check_keys("loading", lo, {"press_approach", "press_force", "turning_points", "pull_limit"})
+    tp = lo.get("turning_points", [])
+    if not isinstance(tp, list):
+        raise SceneError("loading.turning_points", "must be a list of approaches")
+    loading = Loading(lo.get("press_approach"), lo.get("press_force"), tuple(tp), lo.get("pull_limit"))
+    o = d.get("outputs", {})
+    _check_keys("outputs", o, {"curve", "snapshots", "fields"})
+    for k in ("curve", "fields"):
+        if k in o and not isinstance(o[k], bool):
+            raise SceneError(f"outputs.{k}", f"must be true or false (got {o[k]!r})")
+    snaps = o.get("snapshots", [])
+    if not isinstance(snaps, list):
+        raise SceneError("outputs.snapshots", "must be a list of approaches")
+    outputs = Outputs(o.get("curve", True), tuple(snaps), o.get("fields", False))
+    return Scene(indenter, material, adhesion, loading, outputs, name)
+
+
+def load_scene(path) -> Scene:
+    path = Path(path)
+    try:
+        text = path.read_bytes().decode("utf-8")
+    except OSError as exc:
+        raise SceneError("file", f"cannot read {str(path)!r}: {exc.strerror or exc}") from None
+    except UnicodeDecodeError:
+        raise SceneError("file", f"{str(path)!r} is not UTF-8 text") from None
+    try:
+        d = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneError("file", f"{str(path)!r} is not valid TOML: {exc}") from None
+    scene = scene_from_dict(d, base_dir=path.parent)
+    if not scene.name:
+        import dataclasses
+        scene = dataclasses.replace(scene, name=path.stem)
+    return scene
+
+
+def summarise(scene: Scene) -> dict:
+    """Geometry and closed-form bounds of a scene (``crossval scene check``)."""
+    shape = scene.indenter.shape
+    inc = shape.incircle()
+    w = scene.adhesion.work_of_adhesion
+    out = {
+        "name": scene.name,
+        "shape": shape.kind,
+        "profile": scene.indenter.profile.kind,
+        "material": scene.material.kind,
+        "area": shape.area,
+        "area_is_exact": bool(shape.area_is_exact),
+        "nominal_area": shape.nominal_area,
+        "filling_factor": shape.filling_factor,
+        "equivalent_radius": shape.equivalent_radius,
+        "incircle_radius": inc.radius,
+        "incircle_center": list(inc.center),
+        "work_of_adhesion": w,
+    }
+    m = scene.material
+    phi = shape.filling_factor
+    flat = scene.indenter.profile.is_flat
+    if isinstance(m, Homogeneous):
+        E = m.effective_modulus
+        out["effective_modulus"] = E
+        if flat:
+            out["stiffness_estimate"] = theory.compact_shape_stiffness(E_star=E, area=shape.nominal_area)
+            out["upper_bound_force"] = theory.upper_bound_force(E_star=E, work=w, area=shape.nominal_area, filling_factor=phi)
+            out["upper_bound_approach"] = theory.upper_bound_approach(E_star=E, work=w, area=shape.nominal_area, filling_factor=phi)
+            out["lower_bound_force"] = theory.lower_bound_force(E_star=E, work=w, incircle_radius=inc.radius)
+            out["lower_bound_approach"] = theory.lower_bound_approach(E_star=E, work=w, incircle_radius=inc.radius)
+            if isinstance(shape, S.Circle):
+                out["kendall_force"] = theory.kendall_adhesion_force(E_star=E, radius=shape.radius, work=w)
+                out["kendall_approach"] = theory.kendall_critical_approach(E_star=E, radius=shape.radius, work=w)
+                out["kendall_stiffness"] = theory.kendall_stiffness(E_star=E, radius=shape.radius)
+        elif isinstance(scene.indenter.profile, (Sphere, Paraboloid)):
+            out["jkr_force"] = theory.jkr_pulloff_force(work=w, sphere_radius=scene.indenter.profile.radius)
+    else:
+        E0, c0, k = m.surface_modulus, m.reference_depth, m.exponent
+        out["exponent"] = k
+        out["poisson_ratio"] = m.poisson_ratio
+        if flat:
+            a_eq = shape.equivalent_radius
+            out["stiffness_estimate"] = theory.graded_stiffness(E0=E0, c0=c0, k=k, radius=a_eq)
+            out["upper_bound_force"] = theory.graded_adhesion_force(E0=E0, c0=c0, k=k, radius=a_eq, work=w, filling_factor=phi)
+            out["upper_bound_approach"] = theory.graded_critical_approach(E0=E0, c0=c0, k=k, radius=a_eq, work=phi * w)
+            out["lower_bound_force"] = theory.graded_adhesion_force(E0=E0, c0=c0, k=k, radius=inc.radius, work=w)
+            out["lower_bound_approach"] = theory.graded_critical_approach(E0=E0, c0=c0, k=k, radius=inc.radius, work=w)
+            if isinstance(shape, S.Circle):
+                out["graded_force"] = theory.graded_adhesion_force(E0=E0, c0=c0, k=k, radius=shape.radius, work=w)
+                out["graded_approach"] = theory.graded_critical_approach(E0=E0, c0=c0, k=k, radius=shape.radius, work=w)
+                out["graded_stiffness"] = theory.graded_stiffness(E0=E0, c0=c0, k=k, radius=shape.radius)
+    for key, val in out.items():
+        if isinstance(val, float) and not math.isfinite(val):  # pragma: no cover - guarded by validation
+            raise SceneError(key, "evaluates to a non-finite number")
+    return out

@@ -1,0 +1,53 @@
+"""The registry of methods: which solver applies to which scene.
+
+A method is registered lazily by module path so that ``crossval scene check`` never imports a
+solver, and a scene only runs through the methods that can represent it.
+"""
+from __future__ import annotations
+
+import importlib
+from dataclasses import dataclass
+from typing import Callable
+
+from contact_scene import Scene, SceneError
+
+__all__ = ["Method", "METHODS", "get_method", "applicable_methods"]
+
+
+@dataclass(frozen=True)
+class Method:
+    name: str
+    module: str
+    description: str
+    applies: Callable[[Scene], str | None]  # None when it applies, else the reason it does not
+
+    def solve(self, scene: Scene, *, resolution: float | None = None, callback=None):
+        mod = importlib.import_module(self.module)
+        return mod.solve_with_resolution(scene, resolution, callback=callback)
+
+
+def _griffith_applies(scene: Scene) -> str | None:
+    from contact_scene import Homogeneous
+
+    if not isinstance(scene.material, Homogeneous):
+        return "bem_griffith handles homogeneous half-spaces (graded kernels are not implemented yet)"
+    return None
+
+
+METHODS: dict[str, Method] = {
+    "bem_griffith": Method(
+        "bem_griffith", "bem_griffith",
+        "FFT boundary elements with the Pohrt-Popov local Griffith detachment criterion",
+        _griffith_applies,
+    ),
+}
+
+
+def get_method(name: str) -> Method:
+    if name not in METHODS:
+        raise SceneError("method", f"unknown method {name!r}; available: {', '.join(sorted(METHODS))}")
+    return METHODS[name]
+
+
+def applicable_methods(scene: Scene) -> list[Method]:
+    return [m for m in METHODS.values() if m.applies(scene) is None]

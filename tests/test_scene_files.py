@@ -1,0 +1,148 @@
+"""Scene files: the shipped examples load; every kind of bad input gets one clear message."""
+import copy
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from hypothesis import HealthCheck, given, settings, strategies as st
+
+import contact_scene as cs
+from contact_scene.io import scene_from_dict
+
+ROOT = Path(__file__).resolve().parents[1]
+SCENES = sorted((ROOT / "scenes").glob("*.toml"))
+
+BASE = {
+    "indenter": {"shape": "circle", "radius": 1.0, "profile": "flat"},
+    "material": {"model": "homogeneous", "youngs_modulus": 1.0, "poisson_ratio": 0.3},
+    "adhesion": {"work_of_adhesion": 1.0},
+}
+
+
+def with_(path, value):
+    d = copy.deepcopy(BASE)
+    *head, last = path.split(".")
+    t = d
+    for h in head:
+        t = t.setdefault(h, {})
+    if value is _DELETE:
+        del t[last]
+    else:
+        t[last] = value
+    return d
+
+
+_DELETE = object()
+
+
+@pytest.mark.parametrize("path", SCENES, ids=[p.stem for p in SCENES])
+def test_shipped_scenes_load_and_bounds_are_ordered(path):
+    scene = cs.load_scene(path)
+    s = cs.summarise(scene)
+    assert s["area"] > 0 and s["incircle_radius"] <= s["equivalent_radius"] * (1 + 1e-12)
+    if "upper_bound_force" in s:
+        assert s["upper_bound_force"] >= s["lower_bound_force"]
+
+
+BAD = [
+    ("material.youngs_modulus", -1.0, "material.youngs_modulus: must be in > 0"),
+    ("material.youngs_modulus", 0.0, "material.youngs_modulus"),
+    ("material.youngs_modulus", "soft", "must be a number"),
+    ("material.poisson_ratio", 0.7, r"material.poisson_ratio: must be in \(-1, 0.5\]"),
+    ("material.model", "rubber", "material.model"),
+    ("adhesion.work_of_adhesion", -0.1, "adhesion.work_of_adhesion"),
+    ("adhesion.colour", "red", "adhesion.colour: unknown key"),
+    ("indenter.shape", "blob", "indenter.shape: unknown shape 'blob'"),
+    ("indenter.radius", float("nan"), "indenter.radius: must be a finite number"),
+    ("indenter.radius", _DELETE, "indenter.radius: is required"),
+    ("indenter.profile", "wedge", "indenter.profile"),
+    ("loading.press_force", -1.0, "loading.press_force"),
+    ("outputs.fields", "yes", "outputs.fields"),
+    ("surprise", 1, "scene.surprise: unknown key"),
+]
+
+
+@pytest.mark.parametrize("path,value,message", BAD, ids=[b[0] + "=" + repr(b[1]) for b in BAD])
+def test_bad_values_name_field_and_range(path, value, message):
+    with pytest.raises(cs.SceneError, match=message):
+        scene_from_dict(with_(path, value))
+
+
+def test_graded_exponent_range():
+    d = copy.deepcopy(BASE)
+    d["material"] = {"model": "power_law_graded", "surface_modulus": 1.0, "reference_depth": 1.0, "exponent": 1.0}
+    with pytest.raises(cs.SceneError, match=r"material.exponent: must be in \(-1, 1\)"):
+        scene_from_dict(d)
+    d["material"]["exponent"] = -0.5
+    assert scene_from_dict(d).material.poisson_ratio == pytest.approx(1 / 1.5)
+
+
+def test_self_intersecting_polygon_and_curved_profile_without_press():
+    d = copy.deepcopy(BASE)
+    d["indenter"] = {"shape": "polygon", "vertices": [[0, 0], [1, 1], [1, 0], [0, 1]]}
+    with pytest.raises(cs.SceneError, match="indenter.vertices: the polygon intersects itself"):
+        scene_from_dict(d)
+    d["indenter"] = {"shape": "circle", "radius": 1.0, "profile": "paraboloid", "profile_radius": 5.0}
+    with pytest.raises(cs.SceneError, match="loading.press_approach"):
+        scene_from_dict(d)
+
+
+def test_nested_shapes_and_generic_rotation():
+    d = copy.deepcopy(BASE)
+    d["indenter"] = {"shape": "difference", "rotation_deg": 30,
+                     "base": {"shape": "square", "side": 2.0},
+                     "cuts": [{"shape": "circle", "radius": 0.3}]}
+    sc = scene_from_dict(d)
+    assert sc.indenter.shape.area == pytest.approx(4 - 3.14159265 * 0.09, rel=1e-3)
+    d["indenter"]["cuts"] = [{"shape": "circle", "radius": "big"}]
+    with pytest.raises(cs.SceneError, match=r"indenter.radius: must be a number"):
+        scene_from_dict(d)
+
+
+def _cli(*args, cwd=None):
+    return subprocess.run([sys.executable, "-m", "crossval.cli", *args], capture_output=True, text=True, cwd=cwd)
+
+
+def test_cli_scene_check_json(tmp_path):
+    r = _cli("scene", "check", str(ROOT / "scenes" / "kendall_circle.toml"), "--json")
+    assert r.returncode == 0, r.stderr
+    s = json.loads(r.stdout)
+    assert s["kendall_force"] == pytest.approx(s["upper_bound_force"]) == pytest.approx(s["lower_bound_force"])
+
+
+@pytest.mark.parametrize("text,field", [
+    ("[indenter]\nshape='circle'\nradius=-1\n[material]\nmodel='homogeneous'\nyoungs_modulus=1\npoisson_ratio=0.3\n[adhesion]\nwork_of_adhesion=1\n", "indenter.radius"),
+    ("this is not toml", "file"),
+    ("[indenter]\nshape='circle'\nradius=1\n", "scene.material"),
+])
+def test_cli_bad_scene_exits_2_without_traceback(tmp_path, text, field):
+    p = tmp_path / "bad.toml"
+    p.write_text(text)
+    r = _cli("scene", "check", str(p))
+    assert r.returncode == 2
+    assert "Traceback" not in r.stderr and r.stderr.startswith(f"error: {field}")
+
+
+def test_cli_missing_file_exits_2():
+    r = _cli("scene", "check", "/nonexistent/scene.toml")
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+
+
+# every malformed value in a scene file yields a SceneError (never another exception)
+_values = st.one_of(st.none(), st.booleans(), st.integers(-10, 10), st.floats(allow_nan=True, allow_infinity=True),
+                    st.text(max_size=5), st.lists(st.integers(), max_size=3))
+
+
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.sampled_from(["indenter.radius", "indenter.shape", "indenter.profile", "material.youngs_modulus",
+                        "material.poisson_ratio", "material.model", "adhesion.work_of_adhesion", "adhesion.range",
+                        "loading.press_approach", "loading.turning_points", "outputs.snapshots", "name",
+                        "indenter.rotation_deg", "indenter.center"]), _values)
+def test_fuzzed_values_give_scene_errors(path, value):
+    d = with_(path, value)
+    try:
+        scene_from_dict(d)
+    except cs.SceneError as exc:
+        assert exc.field

@@ -1,0 +1,151 @@
+"""Face shapes: exact geometry, rasterisation rule, invariances."""
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as st
+
+import contact_scene as cs
+from contact_scene.shapes import _raster_incircle
+
+SHAPES = {
+    "circle": cs.Circle(1.0),
+    "ellipse": cs.Ellipse(2.0, 1.0, rotation_deg=20),
+    "square": cs.Square(2.0),
+    "rectangle": cs.Rectangle(3.0, 1.0, rotation_deg=30),
+    "triangle": cs.Triangle.equilateral(1.0),
+    "hexagon": cs.RegularPolygon(6, 1.0),
+    "star": cs.Star(5, 1.0, 0.45),
+    "two_circles": cs.TwoCircles(radius1=1.0, radius2=0.7, distance=1.5),
+    "faults": cs.SquareWithFaults(side=1.0, v_cut_depth=0.3, v_cut_width=0.2, line_cuts=2, line_cut_length=0.4, cut_width=0.02),
+    "brush": cs.Brush(side=1.0, pillar_radius=0.06, pitch=0.2),
+}
+
+
+@pytest.mark.parametrize("name", sorted(SHAPES))
+def test_raster_area_error_is_bounded_by_the_staircase(name):
+    # each cell the boundary crosses can be wrong by at most h^2, and there are ~ sqrt(2) P / h of
+    # them: |A_raster - A| <= sqrt(2) P h.  P is measured on the finest raster (boundary cells x h).
+    from scipy import ndimage
+    s = SHAPES[name]
+    fine = cs.rasterise(s, s.equivalent_radius / 256, min_incircle_cells=1)
+    P = np.count_nonzero(fine.mask & ~ndimage.binary_erosion(fine.mask)) * fine.spacing
+    errs = []
+    for n in (16, 32, 64, 128):
+        h = s.equivalent_radius / n
+        err = abs(cs.rasterise(s, h, min_incircle_cells=1).area - s.area)
+        assert err <= math.sqrt(2) * P * h
+        errs.append(err / s.area)
+    assert errs[-1] < 0.02
+
+
+def test_analytic_areas_and_incircles():
+    assert SHAPES["triangle"].area == pytest.approx(math.sqrt(3) / 4)
+    assert SHAPES["triangle"].incircle().radius == pytest.approx(1 / (2 * math.sqrt(3)))
+    assert SHAPES["hexagon"].area == pytest.approx(3 * math.sqrt(3) / 2)
+    assert SHAPES["square"].incircle().radius == 1.0
+    # star: n rays of two triangles (centre, tip, inner vertex)
+    n, R, r = 5, 1.0, 0.45
+    assert SHAPES["star"].area == pytest.approx(n * R * r * math.sin(math.pi / n))
+    b = SHAPES["brush"]
+    assert b.filling_factor == pytest.approx(len(b.parts) * math.pi * 0.06**2)
+    f = SHAPES["faults"]
+    assert f.area_is_exact and f.area == pytest.approx(1.0 - 0.5 * 0.2 * 0.3 - 2 * 0.4 * 0.02)
+    tc = SHAPES["two_circles"]                                # lens area against a fine raster
+    assert cs.Union(tc.parts).area == pytest.approx(tc.area, rel=2e-3)
+
+
+@pytest.mark.parametrize("name", sorted(SHAPES))
+def test_incircle_is_inscribed_and_maximal(name):
+    s = SHAPES[name]
+    r, c = s.incircle()
+    t = np.linspace(0, 2 * np.pi, 721)
+    for rho in (0.999 * r, 0.5 * r):
+        assert s.contains(c[0] + rho * np.cos(t), c[1] + rho * np.sin(t)).all()
+    # independent check on a fine raster (accurate to about 1e-3 of the size)
+    ref = _raster_incircle(s, 1024)
+    assert r == pytest.approx(ref.radius, abs=2e-3 * s.size)
+
+
+def test_closed_set_includes_boundary():
+    sq = cs.Square(2.0)
+    assert sq.contains(1.0, 0.3) and sq.contains(1.0, 1.0) and not sq.contains(1.0 + 1e-6, 0.0)
+    assert cs.Circle(1.0).contains(1.0, 0.0)
+
+
+@pytest.mark.parametrize("name", ["square", "triangle", "star", "faults", "rectangle"])
+def test_raster_rotation_by_90_and_mirror_are_exact(name):
+    # nodes are anchored at the centroid, so the grid maps onto itself: the cells must too
+    s = SHAPES[name]
+    h = s.equivalent_radius / 20
+    m = cs.rasterise(s, h).mask
+    m90 = cs.rasterise(s.rotated(90), h).mask
+    mm = cs.rasterise(s.mirrored(), h).mask
+    assert np.array_equal(m90, np.rot90(m)) or np.array_equal(m90, np.rot90(m, -1))
+    assert np.array_equal(mm, m[::-1, :])
+
+
+@pytest.mark.parametrize("angle", [7.0, 33.0, 45.0])
+def test_rotation_preserves_geometry(angle):
+    s = SHAPES["star"]
+    rs = s.rotated(angle)
+    assert rs.area == pytest.approx(s.area)
+    assert rs.incircle().radius == pytest.approx(s.incircle().radius, rel=1e-6)
+    h = s.equivalent_radius / 64
+    a0, a1 = cs.rasterise(s, h).area, cs.rasterise(rs, h).area
+    assert abs(a1 - a0) < 2 * 10 * h * 1.0                  # within the staircase: perimeter (~10) x h
+
+
+def test_bad_polygons_are_refused():
+    with pytest.raises(cs.SceneError, match="intersects itself"):
+        cs.Polygon(((0, 0), (1, 1), (1, 0), (0, 1)))
+    with pytest.raises(cs.SceneError, match="empty"):
+        cs.Polygon(((0, 0), (1, 1), (2, 2)))
+    with pytest.raises(cs.SceneError, match="at least 3"):
+        cs.Polygon(((0, 0), (1, 1)))
+
+
+def test_too_coarse_grid_is_refused():
+    with pytest.raises(cs.SceneError, match="too coarse"):
+        cs.rasterise(cs.Circle(1.0), 0.6)
+    cs.rasterise(cs.Circle(1.0), 0.5)
+
+
+def test_power_law_star_ring_filling_follows_design():
+    s = cs.PowerLawStar(8, 0.3, 1.0, samples=128)
+    for r in (0.4, 0.6, 0.9):
+        assert s.ring_filling(r, samples=200_000) == pytest.approx(float(s.design_filling(r)), rel=2e-3)
+    assert s.ring_filling(0.2) == 1.0
+
+
+def test_image_mask(tmp_path):
+    import matplotlib.image as mpimg
+    n = 200
+    yy, xx = np.mgrid[0:n, 0:n]
+    disc = (xx + 0.5 - n / 2) ** 2 + (yy + 0.5 - n / 2) ** 2 <= 60**2
+    img = np.where(disc, 0.0, 1.0)
+    p = tmp_path / "face.png"
+    mpimg.imsave(p, img, cmap="gray", vmin=0, vmax=1)
+    s = cs.ImageMask(path=str(p), pixel_size=0.01)
+    assert s.area == pytest.approx(math.pi * 0.6**2, rel=0.01)
+    assert s.incircle().radius == pytest.approx(0.6, abs=0.015)
+    with pytest.raises(cs.SceneError, match="cannot read"):
+        cs.ImageMask(path=str(tmp_path / "missing.png"), pixel_size=0.01)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.tuples(st.floats(-1, 1), st.floats(-1, 1)), min_size=3, max_size=12))
+def test_convex_polygon_incircle_bound(points):
+    from scipy.spatial import ConvexHull, QhullError
+    try:
+        hull = ConvexHull(np.array(points))
+    except (QhullError, ValueError):
+        return
+    v = np.array(points)[hull.vertices]
+    if hull.volume < 1e-3:
+        return
+    p = cs.Polygon(tuple(map(tuple, v)))
+    r, c = p.incircle()
+    assert p.area == pytest.approx(hull.volume, rel=1e-9)
+    assert r <= 2 * p.area / hull.area * (1 + 1e-9)            # r <= 2A/P for every convex polygon
+    assert -p.signed_distance(*c) == pytest.approx(r, rel=1e-6)
