@@ -1,0 +1,7 @@
+"""Pohrt-Popov adhesive boundary-element method on a square grid (FFT convolution)."""
+from .kernel import love_influence, love_square_integral
+from .operator import HalfSpaceOperator
+from .settings import Settings
+from .solver import solve, solve_with_resolution
+
+__all__ = ["solve", "solve_with_resolution", "Settings", "HalfSpaceOperator", "love_influence", "love_square_integral"]

@@ -1,0 +1,53 @@
+"""Influence coefficients of square elements on an elastic half-space."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["love_square_integral", "love_influence", "padded_shape"]
+
+
+def _f(X, Y):
+    # an antiderivative of 1/sqrt(X^2 + Y^2) in both variables, valid in every quadrant
+    X = np.asarray(X, float)
+    Y = np.asarray(Y, float)
+    ax, ay = np.abs(X), np.abs(Y)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t1 = np.where(ax > 0, X * np.arcsinh(Y / np.where(ax > 0, ax, 1.0)), 0.0)
+        t2 = np.where(ay > 0, Y * np.arcsinh(X / np.where(ay > 0, ay, 1.0)), 0.0)
+    return t1 + t2
+
+
+def love_square_integral(x, y, half_width: float):
+    """The integral of 1/|r - r'| over the square |x'|, |y'| <= b, seen from (x, y) (Love 1929).
+
+    Closed asinh form; the displacement under unit pressure on the square is this divided by
+    pi E*.  At the centre it is 8 b asinh(1)."""
+    b = half_width
+    return _f(x + b, y + b) - _f(x + b, y - b) - _f(x - b, y + b) + _f(x - b, y - b)
+
+
+def love_influence(nx: int, ny: int, spacing: float, E_star: float, padded: tuple[int, int] | None = None) -> np.ndarray:
+    """Influence coefficients for all cell offsets, laid out for a linear (zero-padded) FFT
+    convolution on a ``padded`` grid (default (2 nx) x (2 ny); any size >= 2n - 1 works):
+    entry [i, j] holds offset (i, j) for i < nx and (i - Mx, j) for i > Mx - nx (likewise j);
+    entries for offsets no pair of cells can have are zero."""
+    Mx, My = padded if padded is not None else (2 * nx, 2 * ny)
+    if Mx < 2 * nx - 1 or My < 2 * ny - 1:
+        raise ValueError(f"padded size {(Mx, My)} too small for a linear convolution of {(nx, ny)}")
+    ix = np.arange(Mx)
+    iy = np.arange(My)
+    ox = np.where(ix < nx, ix, ix - Mx).astype(float)
+    oy = np.where(iy < ny, iy, iy - My).astype(float)
+    X, Y = np.meshgrid(ox * spacing, oy * spacing, indexing="ij")
+    K = love_square_integral(X, Y, spacing / 2) / (math.pi * E_star)
+    K[(ix >= nx) & (ix <= Mx - nx), :] = 0.0
+    K[:, (iy >= ny) & (iy <= My - ny)] = 0.0
+    return K
+
+
+def padded_shape(nx: int, ny: int) -> tuple[int, int]:
+    """The smallest FFT-friendly sizes that hold a linear convolution of an nx x ny grid."""
+    import scipy.fft as sfft
+    return (sfft.next_fast_len(2 * nx - 1, real=True), sfft.next_fast_len(2 * ny - 1, real=True))

@@ -1,0 +1,83 @@
+"""The half-space operator u = C p as an FFT convolution."""
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.fft as sfft
+
+__all__ = ["HalfSpaceOperator", "default_workers"]
+
+
+def default_workers() -> int:
+    """FFT threads: the machine's cores (the FFT is the only threaded part of a solve)."""
+    return max(1, os.cpu_count() or 1)
+
+
+@dataclass(frozen=True, eq=False)
+class HalfSpaceOperator:
+    """Displacement u (nx x ny) from pressure p (nx x ny) by linear convolution with the
+    element influence coefficients, zero-padded (to at least 2n - 1) so the grid does not wrap.
+
+    ``kernel`` is laid out as :func:`bem_griffith.kernel.love_influence` returns it.  The
+    transforms are pruned: the input occupies only nx of the Mx padded rows and only nx rows
+    of the output are wanted, so the row transforms run on nx rows, not Mx (about 3/4 of the
+    work of a plain padded rfft2/irfft2 pair; measured in ``benchmarks/bench_matvec.py``).
+    """
+
+    kernel: np.ndarray
+    shape: tuple[int, int]
+    workers: int = 1
+
+    def __post_init__(self):
+        nx, ny = self.shape
+        Mx, My = self.kernel.shape
+        if Mx < 2 * nx - 1 or My < 2 * ny - 1:
+            raise ValueError(f"kernel shape {self.kernel.shape} too small for grid {self.shape}")
+        khat = sfft.rfft2(self.kernel, workers=self.workers)
+        object.__setattr__(self, "_khat", khat)
+        # the symbol of an even real kernel is real: multiply by the real part only
+        object.__setattr__(self, "_symbol", np.ascontiguousarray(khat.real))
+        object.__setattr__(self, "_symbol32", None)
+
+    @property
+    def padded_shape(self) -> tuple[int, int]:
+        return self.kernel.shape
+
+    @property
+    def symbol(self) -> np.ndarray:
+        """The real Fourier symbol on the padded (Mx, My // 2 + 1) half-spectrum."""
+        return self._symbol
+
+    def convolve(self, p: np.ndarray, symbol: np.ndarray | None = None) -> np.ndarray:
+        """Linear convolution of p (nx x ny, any float dtype) with ``symbol`` (default: C)."""
+        nx, ny = self.shape
+        Mx, My = self.kernel.shape
+        s = self._symbol if symbol is None else symbol
+        a = sfft.rfft(p, n=My, axis=1, workers=self.workers)
+        b = sfft.fft(a, n=Mx, axis=0, workers=self.workers, overwrite_x=True)
+        b *= s
+        c = sfft.ifft(b, axis=0, workers=self.workers, overwrite_x=True)[:nx]
+        return sfft.irfft(c, n=My, axis=1, workers=self.workers)[:, :ny]
+
+    def apply(self, p: np.ndarray) -> np.ndarray:
+        """u = C p on the nx x ny grid."""
+        return self.convolve(np.asarray(p, float))
+
+    def apply_masked(self, values: np.ndarray, mask: np.ndarray) -> np.ndarray:
+        """u = C p on the whole grid, where p equals ``values`` on ``mask`` and 0 elsewhere."""
+        p = np.zeros(self.shape)
+        p[mask] = values
+        return self.convolve(p)
+
+    def apply_symbol(self, values: np.ndarray, mask: np.ndarray, symbol: np.ndarray) -> np.ndarray:
+        """Like ``apply_masked`` with another Fourier symbol (same layout, float32 or float64),
+        restricted to ``mask``; computed in the symbol's precision."""
+        p = np.zeros(self.shape, dtype=symbol.dtype)
+        p[mask] = values
+        return self.convolve(p, symbol)[mask].astype(float)
+
+    @property
+    def self_influence(self) -> float:
+        return float(self.kernel[0, 0])

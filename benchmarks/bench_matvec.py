@@ -1,0 +1,55 @@
+"""Matvec cost of the Griffith BEM operator against the bare padded FFT convolution.
+
+    python benchmarks/bench_matvec.py
+
+Prints medians and ratios measured in one run: ours (pruned transforms) / bare
+(scipy.fft rfft2 -> multiply -> irfft2 on the padded grid), for float64 and for the float32
+preconditioner path, and pyfftw's bare convolution when pyfftw is installed.
+"""
+from __future__ import annotations
+
+import _timing  # noqa: F401  (sets thread counts before numpy loads)
+import numpy as np
+import scipy.fft as sfft
+
+from bem_griffith.kernel import love_influence, padded_shape
+from bem_griffith.operator import HalfSpaceOperator, default_workers
+
+
+def main(sizes=(64, 130, 258, 514)):
+    workers = default_workers()
+    rows = []
+    for n in sizes:
+        P = padded_shape(n, n)
+        op = HalfSpaceOperator(love_influence(n, n, 1.0, 1.0, P), (n, n), workers)
+        rng = np.random.default_rng(0)
+        p = rng.random((n, n))
+        buf = np.zeros(P)
+        khat = op._khat
+
+        def bare():
+            buf[:n, :n] = p
+            return sfft.irfft2(sfft.rfft2(buf, workers=workers) * khat, s=P, workers=workers)[:n, :n]
+
+        ours = lambda: op.convolve(p)
+        p32 = p.astype(np.float32)
+        s32 = op.symbol.astype(np.float32)
+        ours32 = lambda: op.convolve(p32, s32)
+        assert np.allclose(ours(), bare(), rtol=1e-12, atol=1e-12 * np.abs(bare()).max())
+        tb = _timing.median_time(bare)
+        to = _timing.median_time(ours)
+        t32 = _timing.median_time(ours32)
+        row = [f"{n}x{n}", f"{P[0]}x{P[1]}", f"{tb * 1e3:.3f}", f"{to * 1e3:.3f}", f"{to / tb:.2f}", f"{t32 / tb:.2f}"]
+        try:
+            import pyfftw.interfaces.scipy_fft as pf
+            tf = _timing.median_time(lambda: pf.irfft2(pf.rfft2(buf, workers=workers) * khat, s=P, workers=workers))
+            row.append(f"{tf / tb:.2f}")
+        except ImportError:
+            row.append("n/a")
+        rows.append(row)
+    print(f"FFT workers = {workers}")
+    print(_timing.table(rows, ["grid", "padded", "bare ms", "ours ms", "ours/bare", "f32/bare", "pyfftw/bare"]))
+
+
+if __name__ == "__main__":
+    main()
