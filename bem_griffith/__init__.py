@@ -2,6 +2,6 @@
 from .kernel import love_influence, love_square_integral
 from .operator import HalfSpaceOperator
 from .settings import Settings
-from .solver import solve, solve_with_resolution
+from .solver import PressResult, press, solve, solve_with_resolution
 
-__all__ = ["solve", "solve_with_resolution", "Settings", "HalfSpaceOperator", "love_influence", "love_square_integral"]
+__all__ = ["solve", "press", "PressResult", "solve_with_resolution", "Settings", "HalfSpaceOperator", "love_influence", "love_square_integral"]

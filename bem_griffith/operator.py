@@ -1,7 +1,6 @@
 """The half-space operator u = C p as an FFT convolution."""
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -11,8 +10,10 @@ __all__ = ["HalfSpaceOperator", "default_workers"]
 
 
 def default_workers() -> int:
-    """FFT threads: the machine's cores (the FFT is the only threaded part of a solve)."""
-    return max(1, os.cpu_count() or 1)
+    """FFT threads for one solve: 1.  On this 2-core machine a second FFT thread did not
+    speed up the pruned convolution at any size up to 1080^2 padded and slowed small grids
+    twofold (``benchmarks/bench_matvec.py``); the second core serves parallel sweeps instead."""
+    return 1
 
 
 @dataclass(frozen=True, eq=False)

@@ -24,6 +24,7 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy import optimize
 
 from contact_scene import Homogeneous, Result, Scene, SceneError, Snapshot, Curve, rasterise, theory
 from contact_scene.discretisation import Grid
@@ -33,7 +34,7 @@ from .linear import conjugate_gradient
 from .operator import HalfSpaceOperator
 from .settings import Settings
 
-__all__ = ["solve", "solve_with_resolution", "Problem", "build_problem"]
+__all__ = ["solve", "solve_with_resolution", "press", "PressResult", "Problem", "build_problem"]
 
 log = logging.getLogger("bem_griffith")
 
@@ -186,34 +187,52 @@ def _press(prob: Problem, scene: Scene, settings: Settings, counter: dict) -> tu
         return 0.0, prob.face.copy()  # touching: the whole face, no stress
     if lo.press_approach is not None:
         return lo.press_approach, _press_to_approach(prob, lo.press_approach, settings, counter)
-    # press to a force: F(d) is continuous and increasing without adhesion; bracket and bisect
+    # press to a force: F(d) is continuous and increasing without adhesion; bracket, then Brent
     target = lo.press_force
     if target == 0.0:
         return 0.0, prob.face.copy() if prob.flat else prob.face & (prob.height <= prob.height[prob.face].min())
     cell = prob.spacing**2
+    hmin = float(prob.height[prob.face].min())
+    sets = {}
 
-    def force(d):
+    def excess(d):
         S = _press_to_approach(prob, d, settings, counter)
-        sol = _solve_set(prob, S, settings, None, counter)
-        return sol.force(d, cell), S
+        sets[d] = S
+        return _solve_set(prob, S, settings, None, counter).force(d, cell) - target
 
-    hmin = prob.height[prob.face].min()
-    d_hi = hmin + max(prob.spacing, 1e-12)
-    f_hi, S_hi = force(d_hi)
-    while f_hi < target:
+    d_hi = hmin + prob.spacing
+    while excess(d_hi) < 0:
         d_hi = hmin + 2 * (d_hi - hmin)
-        f_hi, S_hi = force(d_hi)
-    d_lo = hmin
-    for _ in range(60):
-        d_mid = 0.5 * (d_lo + d_hi)
-        f_mid, S_mid = force(d_mid)
-        if f_mid < target:
-            d_lo = d_mid
-        else:
-            d_hi, f_hi, S_hi = d_mid, f_mid, S_mid
-        if abs(f_hi - target) <= 1e-9 * target:
-            break
-    return d_hi, S_hi
+    d = optimize.brentq(excess, hmin + 1e-12 * (d_hi - hmin), d_hi, xtol=1e-12 * d_hi, rtol=1e-12)
+    return d, sets[d] if d in sets else _press_to_approach(prob, d, settings, counter)
+
+
+@dataclass(frozen=True, eq=False)
+class PressResult:
+    """The non-adhesive indentation state (the paper presses without adhesion)."""
+
+    approach: float
+    force: float
+    contact: np.ndarray
+    contact_area: float
+    stiffness: float          # dF/dd with the contact set held fixed (the unloading stiffness)
+    spacing: float
+    origin: tuple[float, float]
+
+
+def press(scene: Scene, settings: Settings | None = None) -> PressResult:
+    """Press without adhesion as the scene's loading says (a flat face: just touching) and
+    return the state; no pull.  Cheap: stiffness studies (Eq. 9) need only this."""
+    settings = settings or Settings()
+    prob = build_problem(scene, settings)
+    counter = dict(matvecs=0, cg_iterations=0, solves=0, residual=0.0, unconverged=0, unsettled=0, detached_elements=0)
+    d0, S0 = _press(prob, scene, settings, counter)
+    sol = _solve_set(prob, S0, settings, None, counter)
+    cell = prob.spacing**2
+    if not sol.converged:
+        raise RuntimeError(f"press: contact solve did not converge (residual {sol.residual:.3g})")
+    return PressResult(d0, sol.force(d0, cell), S0, float(S0.sum()) * cell, float(cell * sol.x1.sum()),
+                       prob.spacing, prob.origin)
 
 
 # ---------------------------------------------------------------------------
@@ -391,12 +410,17 @@ def solve(scene: Scene, settings: Settings | None = None, *, callback=None) -> R
             _record_snapshot(prob, sol, d_next, crossing, taken, snaps, scene.outputs.fields)
             d = d_next
             pre = sol
-            record(d, sol)  # the state reached with the set unchanged (an event's peak)
+            if settings.driver == "event":
+                # admissible: at an event the first element sits exactly at sigma_c (a peak)
+                record(d, sol)
             sol, cut = _cascade(prob, sol, d, settings, counter, msgs)
             if sol.S is not pre.S:
                 if not sol.S.any():
                     last_stable = Snapshot(float(d), pre.force(d, cell), pre.S.copy(), prob.spacing, prob.origin)
                     detach_d = d
+                record(d, sol)
+            elif settings.driver == "fixed_step":
+                # the paper's driver: the force after the step's cascade
                 record(d, sol)
             events += 1
             if events > max_events:

@@ -65,9 +65,10 @@ def _check_keys(section: str, d: dict, allowed: set, required: set = frozenset()
     for k in d:
         if k not in allowed:
             raise SceneError(f"{section}.{k}", f"unknown key; allowed keys: {', '.join(sorted(allowed))}")
-    for k in required:
-        if k not in d:
-            raise SceneError(f"{section}.{k}", "is required")
+    missing = sorted(k for k in required if k not in d)
+    if missing:
+        also = f" (also missing: {', '.join(missing[1:])})" if len(missing) > 1 else ""
+        raise SceneError(f"{section}.{missing[0]}", f"is required{also}")
 
 
 def shape_from_dict(d: dict, *, base_dir: Path | None = None, section: str = "indenter") -> S.Shape:

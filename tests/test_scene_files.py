@@ -115,7 +115,7 @@ def test_cli_scene_check_json(tmp_path):
 @pytest.mark.parametrize("text,field", [
     ("[indenter]\nshape='circle'\nradius=-1\n[material]\nmodel='homogeneous'\nyoungs_modulus=1\npoisson_ratio=0.3\n[adhesion]\nwork_of_adhesion=1\n", "indenter.radius"),
     ("this is not toml", "file"),
-    ("[indenter]\nshape='circle'\nradius=1\n", "scene.material"),
+    ("[indenter]\nshape='circle'\nradius=1\n", "scene.adhesion: is required (also missing: material)"),
 ])
 def test_cli_bad_scene_exits_2_without_traceback(tmp_path, text, field):
     p = tmp_path / "bad.toml"
@@ -146,3 +146,20 @@ def test_fuzzed_values_give_scene_errors(path, value):
         scene_from_dict(d)
     except cs.SceneError as exc:
         assert exc.field
+
+
+def test_cli_solve_json_has_the_fixed_keys():
+    from contact_scene.result import JSON_KEYS
+    r = _cli("solve", str(ROOT / "scenes" / "kendall_circle.toml"), "--method", "bem_griffith", "--resolution", "12", "--json")
+    assert r.returncode == 0, r.stderr
+    out = json.loads(r.stdout)
+    assert set(JSON_KEYS) <= set(out)
+    assert set(out["curve"]) == {"approach", "force", "contact_area"}
+    assert out["converged"] is True and out["pulloff_force"] > 0
+
+
+def test_cli_solve_refuses_bad_resolution_and_unknown_method():
+    r = _cli("solve", str(ROOT / "scenes" / "kendall_circle.toml"), "--method", "bem_griffith", "--resolution", "1")
+    assert r.returncode == 2 and "too coarse" in r.stderr and "Traceback" not in r.stderr
+    r = _cli("solve", str(ROOT / "scenes" / "kendall_circle.toml"), "--method", "magic")
+    assert r.returncode == 2 and "Traceback" not in r.stderr

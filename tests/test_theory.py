@@ -18,7 +18,7 @@ def test_element_constant_closed_form_and_two_square_integral():
     assert round(T.ELEMENT_ENERGY_CONSTANT, 6) == 0.473201
 
 
-@pytest.mark.parametrize("k", [-0.75, -0.3, 0.4, 0.6])
+@pytest.mark.parametrize("k", [-0.75, -0.3, 0.4])
 def test_two_square_integral_brute_force(k):
     ref, _ = integrate.dblquad(lambda v, u: 4 * (1 - u) * (1 - v) * math.hypot(u, v) ** -(1 + k), 0, 1, 0, 1,
                                epsabs=1e-10, epsrel=1e-10)
