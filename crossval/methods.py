@@ -34,11 +34,22 @@ def _griffith_applies(scene: Scene) -> str | None:
     return None
 
 
+def _fem_applies(scene: Scene) -> str | None:
+    from fem_reference import applies
+
+    return applies(scene)
+
+
 METHODS: dict[str, Method] = {
     "bem_griffith": Method(
         "bem_griffith", "bem_griffith",
         "FFT boundary elements with the Pohrt-Popov local Griffith detachment criterion",
         _griffith_applies,
+    ),
+    "fem_reference": Method(
+        "fem_reference", "fem_reference",
+        "axisymmetric Taylor-Hood finite elements with a Griffith energy release rate (circular faces)",
+        _fem_applies,
     ),
 }
 

@@ -1,0 +1,78 @@
+"""Cost of a full Pohrt-Popov pull-off, in matvec-equivalents measured in the same run.
+
+    python benchmarks/bench_griffith_pulloff.py [--quick]
+
+For each case: median wall time of the pull-off, the median time of one bare padded FFT
+convolution (scipy.fft rfft2 -> multiply -> irfft2) at the same padded size, their ratio
+(the "matvec-equivalents"), and the operator applications actually counted.  A second
+table shows which solver choices change the answer (they must not) and what they cost.
+"""
+from __future__ import annotations
+
+import sys
+import time
+
+import _timing  # noqa: F401  (thread counts first)
+import numpy as np
+import scipy.fft as sfft
+
+import bem_griffith as bg
+import contact_scene as cs
+from bem_griffith.kernel import padded_shape
+
+
+def bare_conv_time(nx, ny) -> float:
+    P = padded_shape(nx, ny)
+    buf = np.zeros(P)
+    buf[:nx, :ny] = np.random.default_rng(0).random((nx, ny))
+    khat = sfft.rfft2(np.random.default_rng(1).random(P))
+    return _timing.median_time(lambda: sfft.irfft2(sfft.rfft2(buf) * khat, s=P), repeat=15, number=3)
+
+
+def time_solve(scene, settings, repeat):
+    ts, res = [], None
+    for _ in range(repeat):
+        t = time.perf_counter()
+        res = bg.solve(scene, settings)
+        ts.append(time.perf_counter() - t)
+    return float(np.median(ts)), res
+
+
+def main(quick=False):
+    E = cs.Homogeneous(0.75, 0.5)
+    circle = cs.Scene(cs.Indenter(cs.Circle(1.0)), E, cs.Adhesion(1.0))
+    star = cs.Scene(cs.Indenter(cs.Star(5, 1.0, 0.45)), E, cs.Adhesion(1.0))
+    cases = [("circle", circle, 32, 3), ("circle", circle, 64, 3), ("circle", circle, 128, 3)]
+    if not quick:
+        # the paper's 512 x 512 grid for a star: sqrt(A/pi) = 0.6 of its 1.0 outer radius
+        cases.append(("star 512^2", star, 512 * star.indenter.shape.equivalent_radius / 2.0 / 1.0, 1))
+    rows = []
+    for name, sc, N, rep in cases:
+        st = bg.Settings(grid=cs.Grid(elements_per_radius=N))
+        wall, r = time_solve(sc, st, rep)
+        nx, ny = r.info["grid"]
+        tb = bare_conv_time(nx, ny)
+        rows.append([name, f"{N:.0f}", f"{nx}x{ny}", f"{wall:.2f}", f"{tb * 1e3:.2f}", f"{wall / tb:.0f}",
+                     r.info["matvecs"], r.info["solves"], r.info["events"], f"{r.pulloff_force:.6g}"])
+    print(_timing.table(rows, ["case", "N/radius", "grid", "wall s", "bare conv ms", "matvec-eq", "matvecs",
+                               "solves", "events", "F_A"]))
+    print()
+    # which choices change the answer
+    rows = []
+    N = 48
+    ref = None
+    for label, kw in [("default (fourier, cut cascade)", {}),
+                      ("no preconditioner", {"preconditioner": "none"}),
+                      ("full cascade", {"stop_when_certainly_detached": False}),
+                      ("rtol 1e-8", {"rtol": 1e-8})]:
+        wall, r = time_solve(circle, bg.Settings(grid=cs.Grid(elements_per_radius=N), **kw), 3)
+        ref = ref or r
+        rows.append([label, f"{wall:.2f}", r.info["matvecs"], f"{r.pulloff_force:.10g}",
+                     f"{abs(r.pulloff_force / ref.pulloff_force - 1):.1e}",
+                     f"{abs(r.detachment_approach / ref.detachment_approach - 1):.1e}"])
+    print(f"circle, N = {N}:")
+    print(_timing.table(rows, ["choice", "wall s", "matvecs", "F_A", "|dF_A|/F_A", "|d det| rel"]))
+
+
+if __name__ == "__main__":
+    main(quick="--quick" in sys.argv)

@@ -1,0 +1,162 @@
+"""Axisymmetric mixed (Taylor-Hood P2-P1) finite elements for a rigid flat circular punch.
+
+Everything here is dimensionless: punch radius a = 1, modulus scale 1 (E for a homogeneous
+body, E(z) = z^k for a graded one with c0 = 1).  :mod:`fem_reference.solver` scales back.
+
+Coordinates (r, zeta) with depth z = zeta^m.  For a graded body the displacement under the
+punch has a boundary layer u_z ~ d - C z^(1-k); with m = 1/(1 - k) it is linear in zeta, so
+polynomial elements capture it, and the weak form's weight mu / J stays finite at the surface.
+m = 1 for a homogeneous body.  Strains in the mapped coordinates (J = dz/dzeta = m zeta^(m-1)):
+
+    eps_rr = du_r/dr, eps_zz = du_z/dzeta / J, eps_tt = u_r / r, 2 eps_rz = du_r/dzeta / J + du_z/dr
+
+and the volume element is 2 pi r J dr dzeta.  The pressure p (mixed form) carries
+-div u = p / lambda, so nu = 1/2 (1/lambda = 0) is exact and does not lock.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+from skfem import (Basis, BilinearForm, ElementTriP1, ElementTriP2, ElementTriP3, ElementTriP4, ElementVector,
+                   MeshTri, asm)
+
+__all__ = ["Material", "Model", "assemble", "solve_unit_approach", "build_mesh"]
+
+
+@dataclass(frozen=True)
+class Material:
+    """Dimensionless material: E(z) = z^k (k = 0: homogeneous, E = 1) and Poisson's ratio."""
+
+    k: float
+    nu: float
+
+    @property
+    def mapping(self) -> float:
+        return 1.0 / (1.0 - self.k) if self.k > 0 else 1.0
+
+
+def build_mesh(*, domain: float, grading: float, h_min: float, mapping: float, h_max_near: float = 0.25,
+               far_grading: float | None = None, near_radius: float = 2.0) -> MeshTri:
+    """A triangle mesh of [0, domain] x [0, domain^(1/m)] in (r, zeta), refined (red-green-blue,
+    longest edge) until every element's diameter is at most ``grading`` times its distance
+    from the punch edge (1, 0), at most ``h_max_near`` within radius 2 of the axis foot, and
+    down to ``h_min`` at the edge.  The punch edge and the dyadic nodes 2^j are vertices, so
+    the face r <= 1 is a union of boundary facets."""
+    zeta_max = domain ** (1.0 / mapping)
+    rs = np.concatenate([[0.0, 0.5], 2.0 ** np.arange(0, int(np.ceil(np.log2(domain))) + 1)])
+    rs = rs[rs <= domain]
+    if rs[-1] < domain:
+        rs = np.append(rs, domain)
+    zs = np.concatenate([[0.0, 0.5], 2.0 ** np.arange(0, int(np.ceil(np.log2(zeta_max))) + 1)])
+    zs = zs[zs < zeta_max]
+    zs = np.append(zs, zeta_max)
+    m = MeshTri.init_tensor(rs, zs)
+    for _ in range(200):
+        p, t = m.p, m.t
+        c = p[:, t].mean(axis=1)
+        e = np.stack([p[:, t[i]] - p[:, t[(i + 1) % 3]] for i in range(3)])
+        diam = np.sqrt((e**2).sum(axis=1)).max(axis=0)
+        dist = np.hypot(c[0] - 1.0, c[1])
+        near = np.hypot(c[0], c[1]) < 2.0
+        g = np.where(dist < near_radius, grading, far_grading if far_grading is not None else grading)
+        mark = (diam > np.maximum(g * dist, h_min)) | (near & (diam > h_max_near))
+        if mapping != 1.0:
+            # the same rule in physical depth, so that the far field is graded like z, not zeta
+            zt = p[1, t] ** mapping
+            dz = zt.max(axis=0) - zt.min(axis=0)
+            dr = p[0, t].max(axis=0) - p[0, t].min(axis=0)
+            dist_phys = np.hypot(c[0] - 1.0, c[1] ** mapping)
+            mark |= np.maximum(dz, dr) > g * np.maximum(dist_phys, 1.0)
+        if not mark.any():
+            break
+        m = m.refined(np.flatnonzero(mark))
+    return m
+
+
+@dataclass(frozen=True, eq=False)
+class Model:
+    mesh: MeshTri
+    ub: Basis
+    pb: Basis
+    M: sp.csr_matrix          # the saddle-point matrix [[A, B^T], [B, -C]] (per radian)
+    fixed: np.ndarray         # constrained dofs of the combined vector
+    punch: np.ndarray         # u_z dofs on the face (prescribed = d)
+    material: Material
+
+
+def _forms(mat: Material):
+    k, nu, m = mat.k, mat.nu, mat.mapping
+    inv_lam_coef = (1 + nu) * (1 - 2 * nu) / nu if nu != 0 else None
+
+    def geometry(w):
+        r = w.x[0]
+        zeta = w.x[1]
+        J = m * zeta ** (m - 1) if m != 1 else np.ones_like(zeta)
+        z = zeta**m
+        E = z**k if k != 0 else np.ones_like(z)
+        return r, J, E
+
+    def strains(u, r, J):
+        du = u.grad
+        return (du[0][0], du[1][1] / J, u[0] / r, du[0][1] / J + du[1][0])
+
+    @BilinearForm
+    def a(u, v, w):
+        r, J, E = geometry(w)
+        mu = E / (2 * (1 + nu))
+        eu, ev = strains(u, r, J), strains(v, r, J)
+        return (2 * mu * (eu[0] * ev[0] + eu[1] * ev[1] + eu[2] * ev[2]) + mu * eu[3] * ev[3]) * r * J
+
+    @BilinearForm
+    def b(u, q, w):
+        r, J, _ = geometry(w)
+        eu = strains(u, r, J)
+        return -q * (eu[0] + eu[1] + eu[2]) * r * J
+
+    @BilinearForm
+    def c(p, q, w):
+        r, J, E = geometry(w)
+        if inv_lam_coef is None or nu == 0.5:
+            return 0.0 * p * q
+        return p * q * inv_lam_coef / E * r * J
+
+    return a, b, c
+
+
+_ORDERS = {2: (ElementTriP2, ElementTriP1), 3: (ElementTriP3, ElementTriP2), 4: (ElementTriP4, ElementTriP3)}
+
+
+def assemble(mesh: MeshTri, mat: Material, *, order: int = 2, intorder: int | None = None,
+             face_radius: float = 1.0) -> Model:
+    eu, ep = _ORDERS[order]
+    intorder = intorder if intorder is not None else 2 * order + 2
+    ub = Basis(mesh, ElementVector(eu()), intorder=intorder)
+    pb = Basis(mesh, ep(), intorder=intorder)
+    a, b, c = _forms(mat)
+    A = asm(a, ub)
+    B = asm(b, ub, pb)
+    C = asm(c, pb)
+    M = sp.bmat([[A, B.T], [B, -C]], format="csr")
+    L = mesh.p[0].max()
+    Z = mesh.p[1].max()
+    tol = 1e-12 * L
+    axis = ub.get_dofs(lambda x: x[0] < tol).all("u^1")
+    far = ub.get_dofs(lambda x: (x[0] > L - tol * L) | (x[1] > Z * (1 - 1e-12))).all()
+    face = ub.get_dofs(lambda x: (x[1] < tol) & (x[0] < face_radius * (1 + 1e-12))).all("u^2")
+    fixed = np.unique(np.concatenate([axis, far, face]))
+    return Model(mesh, ub, pb, M, fixed, np.setdiff1d(face, far), mat)
+
+
+def solve_unit_approach(model: Model, M: sp.csr_matrix | None = None) -> np.ndarray:
+    """The combined solution vector (u, p) for u_z = 1 on the face."""
+    M = model.M if M is None else M
+    n = M.shape[0]
+    x = np.zeros(n)
+    x[model.punch] = 1.0
+    free = np.setdiff1d(np.arange(n), model.fixed)
+    rhs = -(M[free][:, model.fixed] @ x[model.fixed])
+    x[free] = spla.spsolve(M[free][:, free].tocsc(), rhs)
+    return x

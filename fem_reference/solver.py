@@ -1,0 +1,191 @@
+"""The FEM reference for circular flat punches: stiffness, energy release rate and pull-off.
+
+Solved once, dimensionless, for u_z = 1 on the unit face; then scaled:
+homogeneous K = E a K^ (E Young's modulus), graded K = E0 (a/c0)^k a K^.
+
+Energy release rate at the punch edge, two ways (cross-checked in the result):
+* stiffness derivative (virtual crack extension): nodes within 0.25 a of the edge slide
+  radially with the edge (blending to rest at 0.5 a); at fixed displacement data
+  dU/da = (1/2) x^T (dM/da) x with the same solution x (stationarity), so no re-solve;
+* compliance derivative: K(a +- delta) re-solved on the two moved meshes.
+Griffith (G = w, Eqs. 4-6 and 36-40): d_c = -sqrt(4 pi a w / K'(a)), F_A = K(a) |d_c|.
+"""
+from __future__ import annotations
+
+import logging
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+from skfem import MeshTri
+
+from contact_scene import Circle, Curve, Homogeneous, PowerLawGraded, Result, Scene, SceneError
+from contact_scene.errors import check_int, check_real
+
+from .model import Material, assemble, build_mesh, solve_unit_approach
+
+__all__ = ["FemSettings", "solve", "solve_with_resolution", "unit_solution", "UnitSolution"]
+
+log = logging.getLogger("fem_reference")
+
+
+@dataclass(frozen=True)
+class FemSettings:
+    """Mesh and element settings.
+
+    grading
+        Element diameter at most ``grading`` x its distance from the punch edge (smaller is
+        finer); ``crossval solve --resolution N`` sets grading = 1/N.
+    order
+        Polynomial degree of the displacement (Taylor-Hood: pressure one lower); 4 by default:
+        the convergence study (benchmarks/study_fem.py) reaches 1e-5 at a fraction of the
+        cost of degree 2.
+    domain_radius
+        Truncation, in punch radii: the far boundary is clamped there (error about a/L).
+    h_min
+        Smallest element at the edge, in punch radii.
+    compliance_check
+        Also compute dK/da by re-solving on the two moved meshes (doubles the cost); it
+        agrees with the stiffness derivative to about 3e-8 in the tests.
+    """
+
+    grading: float = 1.0
+    order: int = 4
+    domain_radius: float = 2.0**20
+    h_min: float = 1e-5
+    vce_radius: float = 0.25
+    compliance_check: bool = False
+
+    def __post_init__(self):
+        object.__setattr__(self, "grading", check_real("fem.grading", self.grading, lo=0.05, hi=4.0))
+        object.__setattr__(self, "order", check_int("fem.order", self.order, lo=2, hi=4))
+        object.__setattr__(self, "domain_radius", check_real("fem.domain_radius", self.domain_radius, lo=16.0, hi=2.0**40))
+        object.__setattr__(self, "h_min", check_real("fem.h_min", self.h_min, lo=1e-12, hi=0.1))
+        object.__setattr__(self, "vce_radius", check_real("fem.vce_radius", self.vce_radius, lo=0.01, hi=0.5))
+
+
+@dataclass(frozen=True, eq=False)
+class UnitSolution:
+    """Dimensionless results for a = 1, unit modulus scale, d = 1."""
+
+    stiffness: float           # K^
+    stiffness_reaction: float  # K^ from the reaction force (a check on the energy form)
+    dK_vce: float              # dK^/da by the stiffness derivative
+    dK_compliance: float | None  # dK^/da by re-solving on moved meshes (when asked)
+    dofs: int
+    elements: int
+    timings: dict
+
+
+def _moved(mesh: MeshTri, delta: float, r1: float, mapping: float) -> MeshTri:
+    p = mesh.p.copy()
+    rho = np.hypot(p[0] - 1.0, p[1])
+    q = np.clip((2 * r1 - rho) / r1, 0.0, 1.0)
+    p[0] = p[0] + delta * q
+    return MeshTri(p, mesh.t)
+
+
+def unit_solution(material: Material, settings: FemSettings) -> UnitSolution:
+    t0 = time.perf_counter()
+    mesh = build_mesh(domain=settings.domain_radius, grading=settings.grading, h_min=settings.h_min,
+                      mapping=material.mapping, h_max_near=settings.grading)
+    t1 = time.perf_counter()
+    model = assemble(mesh, material, order=settings.order)
+    x = solve_unit_approach(model)
+    t2 = time.perf_counter()
+    Mx = model.M @ x
+    K = 2 * math.pi * float(x @ Mx)
+    K_react = 2 * math.pi * float(Mx[model.punch].sum())
+    delta = 1e-4
+    plus = assemble(_moved(mesh, delta, settings.vce_radius, material.mapping), material, order=settings.order,
+                    face_radius=1 + delta)
+    minus = assemble(_moved(mesh, -delta, settings.vce_radius, material.mapping), material, order=settings.order,
+                     face_radius=1 - delta)
+    dK_vce = 2 * math.pi * float(x @ ((plus.M - minus.M) @ x)) / (2 * delta)
+    t3 = time.perf_counter()
+    timings = {"mesh": t1 - t0, "solve": t2 - t1, "energy_release": t3 - t2}
+    dK_c = None
+    if settings.compliance_check:
+        xp, xm = solve_unit_approach(plus), solve_unit_approach(minus)
+        dK_c = 2 * math.pi * (float(xp @ (plus.M @ xp)) - float(xm @ (minus.M @ xm))) / (2 * delta)
+        timings["compliance_check"] = time.perf_counter() - t3
+    return UnitSolution(K, K_react, dK_vce, dK_c, model.M.shape[0], mesh.t.shape[1], timings)
+
+
+def _material(scene: Scene) -> tuple[Material, float]:
+    """Dimensionless material and the modulus scale S with K = S a K^."""
+    m = scene.material
+    a = scene.indenter.shape.radius
+    if isinstance(m, Homogeneous):
+        return Material(0.0, m.poisson_ratio), m.youngs_modulus
+    if isinstance(m, PowerLawGraded):
+        if m.exponent < 0:
+            raise SceneError("material.exponent",
+                             f"the FEM covers 0 <= k < 1 only: nu = 1/(2+k) > 1/2 for k < 0 is not a positive definite "
+                             f"material (got k = {m.exponent:g})")
+        return Material(m.exponent, m.poisson_ratio), m.surface_modulus * (a / m.reference_depth) ** m.exponent
+    raise SceneError("material", f"unsupported material {type(m).__name__}")  # pragma: no cover
+
+
+def applies(scene: Scene) -> str | None:
+    if not isinstance(scene.indenter.shape, Circle) or not scene.indenter.profile.is_flat:
+        return "fem_reference models circular flat punches only (axisymmetric)"
+    m = scene.material
+    if isinstance(m, PowerLawGraded) and m.exponent < 0:
+        return "fem_reference covers graded media with 0 <= k < 1 only (nu > 1/2 for k < 0)"
+    return None
+
+
+def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -> Result:
+    """Stiffness, energy release rate and Griffith pull-off of a circular flat punch."""
+    why = applies(scene)
+    if why:
+        raise SceneError("indenter.shape" if "circular" in why else "material.exponent", why)
+    settings = settings or FemSettings()
+    mat, S = _material(scene)
+    a = scene.indenter.shape.radius
+    w = scene.adhesion.work_of_adhesion
+    u = unit_solution(mat, settings)
+    K = S * a * u.stiffness
+    dK = S * u.dK_vce                      # d(S a K^(a))/da with K^ computed at a = 1 (scale-free)
+    if w > 0:
+        d_c = -math.sqrt(4 * math.pi * a * w / dK)
+    else:
+        d_c = 0.0
+    F_A = K * abs(d_c)
+    # a posteriori: for power-law media K ~ a^(1+k) exactly, so a K'/((1+k) K) = 1 in the
+    # continuum; its discrete defect measures the error of K' (and tracks that of K)
+    scaling = abs(u.dK_vce / ((1 + mat.k) * u.stiffness) - 1)
+    react = abs(u.stiffness_reaction / u.stiffness - 1)
+    msgs = []
+    if u.dK_compliance is not None:
+        agree = abs(u.dK_vce / u.dK_compliance - 1)
+        if agree > 1e-3:
+            msgs.append(f"energy release rate: stiffness and compliance derivatives differ by {agree:.2e}")
+    curve = Curve(np.array([0.0, d_c, d_c]), np.array([0.0, -F_A, 0.0]), np.array([math.pi * a * a] * 2 + [0.0]))
+    if callback is not None:
+        callback(d_c, -F_A, math.pi * a * a)
+    log.info("fem_reference: %d dofs, K^ = %.10g, dK^ vce %.10g compliance %.10g", u.dofs, u.stiffness, u.dK_vce, u.dK_compliance)
+    return Result(
+        method="fem_reference",
+        pulloff_force=F_A,
+        pulloff_approach=d_c,
+        stiffness=K,
+        converged=True,
+        grid_spacing=settings.h_min * a,
+        curve=curve if scene.outputs.curve else None,
+        detached=True,
+        detachment_approach=d_c,
+        timings=u.timings,
+        accuracy_estimate=max(scaling, react),
+        messages=tuple(msgs),
+        info={"dofs": u.dofs, "elements": u.elements, "dK_da_vce": S * u.dK_vce, "dK_da_compliance": None if u.dK_compliance is None else S * u.dK_compliance,
+              "stiffness_reaction": S * a * u.stiffness_reaction, "grading": settings.grading, "order": settings.order},
+    )
+
+
+def solve_with_resolution(scene: Scene, resolution: float | None, *, callback=None) -> Result:
+    """Registry entry: ``resolution`` N sets grading = 1/N (default grading 1)."""
+    s = FemSettings() if resolution is None else FemSettings(grading=1.0 / resolution)
+    return solve(scene, s, callback=callback)
