@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-__all__ = ["love_square_integral", "love_influence", "padded_shape"]
+__all__ = ["love_square_integral", "love_influence", "padded_shape", "graded_square_integral", "graded_influence"]
 
 
 def _f(X, Y):
@@ -51,3 +51,46 @@ def padded_shape(nx: int, ny: int) -> tuple[int, int]:
     """The smallest FFT-friendly sizes that hold a linear convolution of an nx x ny grid."""
     import scipy.fft as sfft
     return (sfft.next_fast_len(2 * nx - 1, real=True), sfft.next_fast_len(2 * ny - 1, real=True))
+
+
+def graded_square_integral(x, y, half_width: float, k: float):
+    """Integral of |r - r'|^-(1+k) over the square |x'|, |y'| <= b seen from (x, y) (theory
+    sheet, section 5): 1/(1-k) sum over the four edges of sgn(h) |h|^(1-k) [G(s2/|h|) - G(s1/|h|)],
+    G(t) = t 2F1(1/2, (1+k)/2; 3/2; -t^2).  k = 0 gives Love's asinh form."""
+    from scipy.special import hyp2f1
+
+    if not -1.0 < k < 1.0:
+        raise ValueError(f"k must be in (-1, 1) (got {k})")
+    b = half_width
+    x = np.asarray(x, float)
+    y = np.asarray(y, float)
+
+    def G(t):
+        return t * hyp2f1(0.5, 0.5 * (1 + k), 1.5, -t * t)
+
+    total = np.zeros(np.broadcast(x, y).shape)
+    for h, s1, s2 in ((b - x, -b - y, b - y), (b + x, -b - y, b - y), (b - y, -b - x, b - x), (b + y, -b - x, b - x)):
+        h = np.broadcast_to(h, total.shape)
+        ah = np.abs(h)
+        safe = np.where(ah > 0, ah, 1.0)
+        term = np.sign(h) * safe ** (1 - k) * (G(s2 / safe) - G(s1 / safe))
+        total += np.where(ah > 0, term, 0.0)   # the edge through the field point contributes nothing
+    return total / (1 - k)
+
+
+def graded_influence(nx: int, ny: int, spacing: float, E0: float, c0: float, k: float,
+                     padded: tuple[int, int] | None = None) -> np.ndarray:
+    """Influence coefficients of a power-law graded half-space (w = A_k P / r^(1+k)), laid out
+    like :func:`love_influence`."""
+    from contact_scene.theory import graded_green_coefficient
+
+    Mx, My = padded if padded is not None else (2 * nx, 2 * ny)
+    ix = np.arange(Mx)
+    iy = np.arange(My)
+    ox = np.where(ix < nx, ix, ix - Mx).astype(float)
+    oy = np.where(iy < ny, iy, iy - My).astype(float)
+    X, Y = np.meshgrid(ox * spacing, oy * spacing, indexing="ij")
+    K = graded_square_integral(X, Y, spacing / 2, k) * graded_green_coefficient(E0=E0, c0=c0, k=k)
+    K[(ix >= nx) & (ix <= Mx - nx), :] = 0.0
+    K[:, (iy >= ny) & (iy <= My - ny)] = 0.0
+    return K

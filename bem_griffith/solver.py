@@ -26,10 +26,10 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import optimize
 
-from contact_scene import Homogeneous, Result, Scene, SceneError, Snapshot, Curve, rasterise, theory
+from contact_scene import Homogeneous, PowerLawGraded, Result, Scene, SceneError, Snapshot, Curve, rasterise, theory
 from contact_scene.discretisation import Grid
 
-from .kernel import love_influence, padded_shape
+from .kernel import graded_influence, love_influence, padded_shape
 from .linear import conjugate_gradient
 from .operator import HalfSpaceOperator
 from .settings import Settings
@@ -53,6 +53,7 @@ class Problem:
     E_star: float | None
     work: float
     inverse_symbol: np.ndarray | None = None   # Fourier preconditioner, when chosen
+    upper_approach: object = None              # area -> critical approach of the circle of that area
 
 
 def _estimate_memory_gb(nx: int, ny: int) -> float:
@@ -63,8 +64,6 @@ def _estimate_memory_gb(nx: int, ny: int) -> float:
 
 def build_problem(scene: Scene, settings: Settings) -> Problem:
     mat = scene.material
-    if not isinstance(mat, Homogeneous):
-        raise SceneError("material", "bem_griffith supports homogeneous half-spaces only for now")
     shape = scene.indenter.shape
     h = settings.grid.spacing_for(shape)
     raster = rasterise(shape, h)
@@ -75,20 +74,33 @@ def build_problem(scene: Scene, settings: Settings) -> Problem:
             "settings.max_memory_gb",
             f"a {nx} x {ny} grid needs about {need:.1f} GB (> {settings.max_memory_gb:g}); raise max_memory_gb or coarsen the grid",
         )
-    E = mat.effective_modulus
-    op = HalfSpaceOperator(love_influence(nx, ny, h, E, padded_shape(nx, ny)), (nx, ny), settings.workers)
+    w = scene.adhesion.work_of_adhesion
+    P = padded_shape(nx, ny)
+    if isinstance(mat, Homogeneous):
+        E = mat.effective_modulus
+        K = love_influence(nx, ny, h, E, P)
+        sigma_c = theory.critical_stress(E_star=E, work=w, spacing=h)
+        scale_d = (lambda area: theory.upper_bound_approach(E_star=E, work=w, area=area)) if w > 0 else None
+    elif isinstance(mat, PowerLawGraded):
+        E = None
+        E0, c0, k = mat.surface_modulus, mat.reference_depth, mat.exponent
+        K = graded_influence(nx, ny, h, E0, c0, k, P)
+        sigma_c = theory.graded_critical_stress(E0=E0, c0=c0, k=k, work=w, spacing=h)
+        scale_d = ((lambda area: theory.graded_critical_approach(E0=E0, c0=c0, k=k, radius=math.sqrt(area / math.pi), work=w))
+                   if w > 0 else None)
+    else:  # pragma: no cover - Scene validates the material
+        raise SceneError("material", f"unsupported material {type(mat).__name__}")
+    op = HalfSpaceOperator(K, (nx, ny), settings.workers)
     X, Y = raster.centres()
     height = scene.indenter.profile.height(X, Y)
-    w = scene.adhesion.work_of_adhesion
     inv = None
     if settings.preconditioner == "fourier":
         # the inverse symbol of the full-grid operator approximates (C_SS)^-1 away from the
-        # contact edge; the padded circulant's symbol is positive for the Love kernel
-        # contact set; single precision suffices for a preconditioner and halves its FFT cost
+        # contact edge; single precision suffices for a preconditioner and halves its FFT cost
         sym = op.symbol
-        inv = (1.0 / np.maximum(sym, 1e-12 * sym.max())).astype(np.float32)
-    return Problem(op, raster.mask, np.asarray(height, float), h, raster.origin,
-                   theory.critical_stress(E_star=E, work=w, spacing=h), scene.indenter.profile.is_flat, E, w, inv)
+        inv = (1.0 / np.maximum(sym, 1e-6 * sym.max())).astype(np.float32)
+    return Problem(op, raster.mask, np.asarray(height, float), h, raster.origin, sigma_c,
+                   scene.indenter.profile.is_flat, E, w, inv, scale_d)
 
 
 # ---------------------------------------------------------------------------
@@ -313,9 +325,10 @@ def _cascade(prob: Problem, sol: _SetSolution, d: float, settings: Settings, cou
         counter["detached_elements"] += int(det_local.sum())
         if not S.any():
             return _empty(prob, S), False
-        if prob.flat and settings.stop_when_certainly_detached and d < 0 and prob.work > 0:
+        if prob.flat and settings.stop_when_certainly_detached and d < 0 and prob.E_star is not None and prob.work > 0:
+            # homogeneous only: the circle's strength bounds every face of its area (Eq. 14)
             area = float(S.sum()) * cell
-            d_up = theory.upper_bound_approach(E_star=prob.E_star, work=prob.work, area=area)
+            d_up = prob.upper_approach(area)
             margin = 1.0 + max(settings.certainty_margin, 2.0 * prob.spacing / math.sqrt(area / math.pi))
             if abs(d) > margin * abs(d_up):
                 msgs.append(f"cascade at d = {d:.6g} cut short with {int(S.sum())} elements left: "
@@ -341,9 +354,8 @@ def _path(scene: Scene, d0: float, prob: Problem) -> tuple[list[float], bool]:
     else:
         # far beyond any detachment the bounds allow (flat) or the press depth (curved)
         scale = abs(d0) + prob.spacing
-        if prob.E_star and prob.work > 0:
-            face_area = float(prob.face.sum()) * prob.spacing**2
-            scale += abs(theory.upper_bound_approach(E_star=prob.E_star, work=prob.work, area=face_area))
+        if prob.upper_approach is not None:
+            scale += abs(prob.upper_approach(float(prob.face.sum()) * prob.spacing**2))
         final, user = d0 - 1e3 * scale, False
     return [*scene.loading.turning_points, final], user
 

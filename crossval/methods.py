@@ -27,11 +27,7 @@ class Method:
 
 
 def _griffith_applies(scene: Scene) -> str | None:
-    from contact_scene import Homogeneous
-
-    if not isinstance(scene.material, Homogeneous):
-        return "bem_griffith handles homogeneous half-spaces (graded kernels are not implemented yet)"
-    return None
+    return None  # any face, profile, homogeneous or power-law graded half-space
 
 
 def _fem_applies(scene: Scene) -> str | None:
