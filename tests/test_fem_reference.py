@@ -56,3 +56,18 @@ def test_refuses_what_it_cannot_represent():
         fr.solve(cs.Scene(cs.Indenter(cs.Square(1.0)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0)))
     with pytest.raises(cs.SceneError, match="material.exponent"):
         fr.solve(scene(cs.PowerLawGraded(1.0, 1.0, -0.5)))
+
+
+def test_fields_only_when_asked(tmp_path):
+    import meshio
+
+    mat = cs.Homogeneous(1.0, 0.3)
+    sc = cs.Scene(cs.Indenter(cs.Circle(1.0)), mat, cs.Adhesion(1.0), outputs=cs.Outputs(fields=True))
+    with pytest.raises(cs.SceneError, match="fields_path"):
+        fr.solve(sc, fr.FemSettings(grading=2.0))
+    path = tmp_path / "f.vtu"
+    r = fr.solve(sc, fr.FemSettings(grading=2.0, fields_path=str(path)))
+    m = meshio.read(path)
+    face = (m.points[:, 1] == 0) & (m.points[:, 0] <= 1.0)
+    # the face moves rigidly with the punch at pull-off
+    assert np.allclose(m.point_data["u_z"][face], r.pulloff_approach, rtol=1e-10)
