@@ -94,5 +94,50 @@ def solve_cmd(file, method_name, resolution, as_json):
         click.echo(f"note: {m}")
 
 
+@main.command("compare")
+@click.argument("file", type=click.Path(dir_okay=False))
+@click.option("--resolution", type=float, default=None, help="BEM elements across sqrt(A/pi) (default 32).")
+@click.option("--json", "as_json", is_flag=True, help="Print the comparison as JSON.")
+@_scene_errors_exit_2
+def compare_cmd(file, resolution, as_json):
+    """Run every method that applies to FILE; check against theory and each other.
+
+    Exit status 1 when a check fails."""
+    from .compare import compare
+
+    sc = load_scene(file)
+    if resolution is not None and not resolution > 0:
+        raise SceneError("resolution", f"must be > 0 (got {resolution:g})")
+    cmp = compare(sc, resolution=resolution)
+    if as_json:
+        click.echo(json.dumps({
+            "scene": sc.name, "passed": cmp.passed, "theory": cmp.theory, "skipped": cmp.skipped,
+            "results": {k: {q: getattr(r, q) for q in ("pulloff_force", "pulloff_approach", "stiffness", "converged",
+                                                        "wall_time_s", "grid_spacing")} for k, r in cmp.results.items()},
+            "checks": [{"method": c.method, "quantity": c.quantity, "value": c.value, "reference": c.reference,
+                        "reference_name": c.reference_name, "difference": c.difference, "tolerance": c.tolerance,
+                        "passed": c.passed} for c in cmp.checks],
+        }))
+    else:
+        click.echo(f"scene: {sc.name}")
+        hdr = f"{'method':<16}{'F_A':>12}{'d at F_A':>12}{'stiffness':>12}{'wall s':>9}  converged"
+        click.echo(hdr)
+        for k, r in cmp.results.items():
+            click.echo(f"{k:<16}{r.pulloff_force:>12.6g}{r.pulloff_approach:>12.6g}{r.stiffness:>12.6g}"
+                       f"{r.wall_time_s:>9.2f}  {r.converged}")
+        for k, v in cmp.theory.items():
+            if k != "source":
+                click.echo(f"{'theory':<16}{k} = {v:.6g}  ({cmp.theory['source']})")
+        for k, why in cmp.skipped.items():
+            click.echo(f"skipped {k}: {why}")
+        for c in cmp.checks:
+            click.echo(("ok    " if c.passed else "FAIL  ") + c.explain())
+        for r in cmp.results.values():
+            for m in r.messages:
+                click.echo(f"note ({r.method}): {m}")
+    if not cmp.passed:
+        sys.exit(1)
+
+
 if __name__ == "__main__":  # pragma: no cover
     main()

@@ -1,0 +1,26 @@
+"""pytest plugin (entry point ``pytest11``): reference results for testing your own solver.
+
+    def test_my_solver(adhesion_reference):
+        ref = adhesion_reference("kendall_circle")           # or any contact_scene.Scene
+        d, F = my_solver(...)                                 # your force-approach curve
+        assert_matches_reference(ref, curve=(d, F), rtol=0.01)
+"""
+from __future__ import annotations
+
+import pytest
+
+
+@pytest.fixture(scope="session")
+def adhesion_reference():
+    """A function ``(scene_or_name, resolution=64) -> crossval.reference.Reference``, cached per session."""
+    from .reference import reference
+
+    cache = {}
+
+    def get(scene_or_name, *, resolution: float = 64):
+        key = (scene_or_name if isinstance(scene_or_name, str) else id(scene_or_name), resolution)
+        if key not in cache:
+            cache[key] = reference(scene_or_name, resolution=resolution)
+        return cache[key]
+
+    return get

@@ -1,0 +1,70 @@
+"""Reference results for people who test their own solvers against this package."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+import contact_scene as cs
+
+from .methods import METHODS
+from .suite import scene as builtin_scene
+
+__all__ = ["Reference", "reference", "assert_matches_reference"]
+
+
+@dataclass(frozen=True, eq=False)
+class Reference:
+    scene: cs.Scene
+    result: cs.Result
+    tolerance: float          # the reference's own relative accuracy (from the convergence studies)
+
+
+def reference(scene_or_name, *, resolution: float = 64) -> Reference:
+    """The most accurate method's result for a scene (or a built-in scene's name): the FEM for
+    circular flat punches it covers, else the Griffith BEM at ``resolution`` elements per radius."""
+    scene = builtin_scene(scene_or_name) if isinstance(scene_or_name, str) else scene_or_name
+    fem = METHODS["fem_reference"]
+    if fem.applies(scene) is None:
+        r = fem.solve(scene)
+        return Reference(scene, r, max(10 * (r.accuracy_estimate or 0.0), 1e-4))
+    r = METHODS["bem_griffith"].solve(scene, resolution=resolution)
+    N = scene.indenter.shape.equivalent_radius / r.grid_spacing
+    tol = (0.5 if scene.indenter.profile.is_flat else 2.5) / N
+    return Reference(scene, r, tol)
+
+
+def _from_curve(approach, force):
+    d = np.asarray(approach, float)
+    F = np.asarray(force, float)
+    if d.ndim != 1 or d.shape != F.shape or len(d) < 2:
+        raise ValueError("curve must be two 1-D arrays of equal length >= 2 (approach, force)")
+    i = int(np.argmax(-F))
+    j = int(np.flatnonzero(d != d[0])[0]) if np.any(d != d[0]) else 1
+    return float(-F[i]), float(d[i]), float((F[j] - F[0]) / (d[j] - d[0]))
+
+
+def assert_matches_reference(ref: Reference, *, pulloff_force=None, pulloff_approach=None, stiffness=None,
+                             curve=None, rtol: float = 0.0) -> None:
+    """Raise AssertionError naming every quantity that differs from the reference by more than
+    the reference's own accuracy plus ``rtol``.  A ``curve`` (approach, force) is reduced to its
+    largest tensile force, the approach there, and the slope of its first segment."""
+    if curve is not None:
+        f, d, k = _from_curve(*curve)
+        pulloff_force = f if pulloff_force is None else pulloff_force
+        pulloff_approach = d if pulloff_approach is None else pulloff_approach
+        stiffness = k if stiffness is None else stiffness
+    tol = ref.tolerance + rtol
+    bad = []
+    for name, value in (("pulloff_force", pulloff_force), ("pulloff_approach", pulloff_approach),
+                        ("stiffness", stiffness)):
+        if value is None:
+            continue
+        want = getattr(ref.result, name)
+        diff = value / want - 1 if want else math.inf
+        if not abs(diff) <= tol:
+            bad.append(f"{name}: {value:.6g} vs reference {want:.6g} ({ref.result.method}): {diff:+.3%}, "
+                       f"tolerance {tol:.3%} (reference accuracy {ref.tolerance:.3%} + rtol {rtol:.3%})")
+    if bad:
+        raise AssertionError(f"scene {ref.scene.name or '(unnamed)'}: " + "; ".join(bad))

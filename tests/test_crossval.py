@@ -1,0 +1,65 @@
+"""The harness: compare, the reference helper and the pytest plugin."""
+import json
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import contact_scene as cs
+import crossval
+from crossval.compare import Check
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def test_compare_circle_runs_both_methods_and_passes():
+    sc = crossval.SUITE["incompressible_circle"]
+    cmp = crossval.compare(sc, resolution=16)
+    assert set(cmp.results) == {"bem_griffith", "fem_reference"}
+    assert cmp.passed, [c.explain() for c in cmp.checks if not c.passed]
+    assert any(c.method == "bem_griffith vs fem_reference" for c in cmp.checks)
+
+
+def test_compare_skips_fem_for_a_square_and_checks_bounds():
+    cmp = crossval.compare(crossval.SUITE["square"], resolution=16)
+    assert list(cmp.results) == ["bem_griffith"] and "fem_reference" in cmp.skipped
+    (c,) = [c for c in cmp.checks if c.kind == "bounds"]
+    assert c.passed
+
+
+def test_a_failing_check_explains_itself():
+    c = Check("mine", "pulloff_force", 1.1, 1.0, "Kendall", 0.05)
+    assert not c.passed and "+10.000%" in c.explain() and "tolerance 5.000%" in c.explain()
+
+
+def test_compare_cli_exit_status(tmp_path):
+    r = subprocess.run([sys.executable, "-m", "crossval.cli", "compare", str(ROOT / "scenes" / "square.toml"),
+                        "--resolution", "12", "--json"], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    out = json.loads(r.stdout)
+    assert out["passed"] and "fem_reference" in out["skipped"]
+
+
+def test_assert_matches_reference_accepts_kendall_and_names_a_mismatch():
+    ref = crossval.reference("kendall_circle")
+    assert ref.result.method == "fem_reference"
+    E = 1.0 / (1 - 0.09)
+    FK = cs.theory.kendall_adhesion_force(E_star=E, radius=1.0, work=1.0)
+    dK = cs.theory.kendall_critical_approach(E_star=E, radius=1.0, work=1.0)
+    d = np.array([0.0, dK, dK])
+    F = np.array([0.0, -FK, 0.0])
+    crossval.assert_matches_reference(ref, curve=(d, F))
+    with pytest.raises(AssertionError, match=r"pulloff_force: .* \+2\.000%"):
+        crossval.assert_matches_reference(ref, pulloff_force=1.02 * FK)
+
+
+def test_plugin_fixture_is_registered(pytester):
+    pytester.makepyfile("""
+        def test_x(adhesion_reference):
+            ref = adhesion_reference("incompressible_circle")
+            assert ref.result.method == "fem_reference"
+    """)
+    pytester.runpytest().assert_outcomes(passed=1)   # registered through the pytest11 entry point
