@@ -1,12 +1,19 @@
 """Conjugate gradients for the symmetric positive definite contact systems C_SS x = b."""
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
 
 __all__ = ["CGResult", "conjugate_gradient"]
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> float:
+    # numpy's own pairwise sum, not a threaded BLAS reduction whose rounding depends on the
+    # thread count: results are bit-identical serially, in worker processes and on a cluster
+    return float(np.add.reduce(a * b))
 
 
 @dataclass(frozen=True, eq=False)
@@ -32,7 +39,7 @@ def conjugate_gradient(matvec: Callable, b: np.ndarray, x0: np.ndarray | None = 
         full = matvec(v)
         return (full[restrict], full) if restrict is not None else (full, None)
 
-    bnorm = float(np.linalg.norm(b))
+    bnorm = math.sqrt(_dot(b, b))
     if x0 is None:
         x = np.zeros_like(b)
         r = b.copy()
@@ -46,12 +53,12 @@ def conjugate_gradient(matvec: Callable, b: np.ndarray, x0: np.ndarray | None = 
         return CGResult(np.zeros_like(b), 0, 0.0, True, None if restrict is None else np.zeros(restrict.shape))
     z = precondition(r) if precondition else r
     p = z.copy()
-    rz = float(r @ z)
-    res = float(np.linalg.norm(r)) / bnorm
+    rz = _dot(r, z)
+    res = math.sqrt(_dot(r, r)) / bnorm
     it = 0
     while res > rtol and it < maxiter:
         Ap, Ap_full = A(p)
-        pAp = float(p @ Ap)
+        pAp = _dot(p, Ap)
         if not pAp > 0.0:  # loss of positive definiteness: stop and report, never NaN
             break
         alpha = rz / pAp
@@ -60,11 +67,11 @@ def conjugate_gradient(matvec: Callable, b: np.ndarray, x0: np.ndarray | None = 
         if img is not None:
             img += alpha * Ap_full
         it += 1
-        res = float(np.linalg.norm(r)) / bnorm
+        res = math.sqrt(_dot(r, r)) / bnorm
         if res <= rtol:
             break
         z = precondition(r) if precondition else r
-        rz_new = float(r @ z)
+        rz_new = _dot(r, z)
         p *= rz_new / rz
         p += z
         rz = rz_new

@@ -139,5 +139,109 @@ def compare_cmd(file, resolution, as_json):
         sys.exit(1)
 
 
+def _progress(total: int, desc: str):
+    """A tqdm bar and a callback that advances it (log lines are routed around the bar)."""
+    from tqdm import tqdm
+
+    bar = tqdm(total=total, desc=desc, unit="run", disable=None)
+
+    def cb(job, result):
+        bar.update(1)
+        bar.set_postfix_str(f"{job.scene.name}/{job.method}", refresh=False)
+    return bar, cb
+
+
+@main.command("report")
+@click.option("--quick", is_flag=True, help="Coarse resolutions: under 3 minutes on 2 cores.")
+@click.option("--out", "out_dir", default="report", show_default=True, type=click.Path(file_okay=False))
+@click.option("--workers", type=int, default=None, help="Local processes (default: the machine's cores).")
+@click.option("--scheduler", default=None, help="dask.distributed scheduler address (instead of local processes).")
+@click.option("--no-cache", is_flag=True, help="Recompute everything (results are cached in .crossval-cache).")
+def report_cmd(quick, out_dir, workers, scheduler, no_cache):
+    """Run the built-in suite through every method and write OUT/index.html, results.json and plots.
+
+    Exit status 1 when a check fails."""
+    from tqdm.contrib.logging import logging_redirect_tqdm
+
+    from .report import FULL, QUICK, report
+    from .runner import default_workers
+    from .suite import SUITE
+    from .methods import applicable_methods
+
+    res = QUICK if quick else FULL
+    total = sum(len(res[m.name]) for s in SUITE.values() for m in applicable_methods(s))
+    bar, cb = _progress(total, "report")
+    with bar, logging_redirect_tqdm():
+        rep = report(out_dir, quick=quick, workers=workers or default_workers(), scheduler=scheduler,
+                     cache_dir=None if no_cache else ".crossval-cache", callback=cb)
+    failed = [(s, c) for s, cs_ in rep.checks.items() for c in cs_ if not c.passed]
+    click.echo(f"wrote {rep.directory / 'index.html'} ({rep.wall_time_s:.0f} s); "
+               f"{sum(len(v) for v in rep.checks.values()) - len(failed)} checks passed, {len(failed)} failed")
+    for s, c in failed:
+        click.echo(f"FAIL {s}: {c.explain()}")
+    if failed:
+        sys.exit(1)
+
+
+@main.command("regress")
+@click.option("--update", is_flag=True, help="Rewrite the stored reference file with the current results.")
+@click.option("--workers", type=int, default=None, help="Local processes (default: the machine's cores).")
+def regress_cmd(update, workers):
+    """Compare results with the reference file stored in the package (exit 1 on a mismatch)."""
+    from .regress import REFERENCE_FILE, regress
+    from .runner import default_workers
+
+    bad = regress(update=update, workers=workers or default_workers())
+    if update:
+        click.echo(f"updated {REFERENCE_FILE}")
+        return
+    for m in bad:
+        click.echo(f"MISMATCH {m.explain()}")
+    click.echo(f"{len(bad)} mismatches")
+    if bad:
+        sys.exit(1)
+
+
+@main.command("study")
+@click.argument("file", type=click.Path(dir_okay=False))
+@click.option("--method", "method_names", multiple=True, type=click.Choice(sorted(METHODS)),
+              help="Method(s) to study (default: every one that applies).")
+@click.option("--resolutions", default=None, help="Comma-separated resolutions (default: each method's own set).")
+@click.option("--quantity", default="pulloff_force", type=click.Choice(["pulloff_force", "pulloff_approach", "stiffness"]))
+@click.option("--workers", type=int, default=1)
+@click.option("--json", "as_json", is_flag=True)
+@_scene_errors_exit_2
+def study_cmd(file, method_names, resolutions, quantity, workers, as_json):
+    """Error against resolution and wall time, with fitted convergence rates."""
+    from .study import study
+
+    sc = load_scene(file)
+    for m in method_names:
+        why = METHODS[m].applies(sc)
+        if why:
+            raise SceneError("method", why)
+    res = None
+    if resolutions:
+        try:
+            vals = tuple(float(v) for v in resolutions.split(","))
+        except ValueError:
+            raise SceneError("resolutions", f"must be comma-separated numbers (got {resolutions!r})") from None
+        if not all(v > 0 for v in vals):
+            raise SceneError("resolutions", "must all be > 0")
+        res = {m: vals for m in (method_names or METHODS)}
+    st = study(sc, methods=method_names or None, resolutions=res, quantity=quantity, workers=workers)
+    if as_json:
+        click.echo(json.dumps({"scene": sc.name, "quantity": quantity, "reference": st.reference,
+                               "reference_name": st.reference_name, "rates": st.rates, "time_rates": st.time_rates,
+                               "rows": [r.__dict__ for r in st.rows]}))
+        return
+    click.echo(f"{quantity} of {sc.name}: error against {st.reference_name} ({st.reference:.8g})")
+    click.echo(f"{'method':<16}{'resolution':>11}{'value':>15}{'rel. error':>12}{'wall s':>9}")
+    for r in st.rows:
+        click.echo(f"{r.method:<16}{r.resolution:>11.4g}{r.value:>15.8g}{r.error:>12.3e}{r.wall_time_s:>9.2f}")
+    for m, v in st.rates.items():
+        click.echo(f"{m}: error ~ resolution^-{v:.2f}, ~ time^-{st.time_rates[m]:.2f}")
+
+
 if __name__ == "__main__":  # pragma: no cover
     main()

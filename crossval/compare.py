@@ -19,7 +19,7 @@ from contact_scene import theory as T
 
 from .methods import METHODS, applicable_methods
 
-__all__ = ["Check", "Comparison", "compare", "reference_values"]
+__all__ = ["Check", "Comparison", "compare", "check_results", "reference_values"]
 
 
 @dataclass(frozen=True)
@@ -105,28 +105,20 @@ def _tolerances(scene: cs.Scene, method: str, result: cs.Result) -> dict:
     return tol
 
 
-def compare(scene: cs.Scene, *, methods=None, resolution: float | None = None, callback=None) -> Comparison:
-    """Solve ``scene`` with every applicable method (or those named) and check the results."""
-    chosen = applicable_methods(scene) if methods is None else [METHODS[m] for m in methods]
-    skipped = {m.name: m.applies(scene) for m in METHODS.values() if m.applies(scene)}
+def check_results(scene: cs.Scene, results: dict) -> tuple[Check, ...]:
+    """Checks of solved results against the closed forms and against each other."""
     theory = reference_values(scene)
-    results, checks = {}, []
-    for m in chosen:
-        res_m = None if m.name == "fem_reference" else resolution
-        r = m.solve(scene, resolution=res_m)
-        results[m.name] = r
-        if callback is not None:
-            callback(m.name, r)
-        tol = _tolerances(scene, m.name, r)
-        src = theory.get("source", "")
+    checks = []
+    src = theory.get("source", "")
+    for name, r in results.items():
+        tol = _tolerances(scene, name, r)
         for q in ("pulloff_force", "pulloff_approach", "stiffness"):
             if q in theory and q in tol:
-                checks.append(Check(m.name, q, getattr(r, q), theory[q], src, tol[q]))
+                checks.append(Check(name, q, getattr(r, q), theory[q], src, tol[q]))
         if "upper_force" in theory:
             N = scene.indenter.shape.equivalent_radius / r.grid_spacing
-            checks.append(Check(m.name, "pulloff_force", r.pulloff_force, theory["lower_force"], src, 0.5 / N,
+            checks.append(Check(name, "pulloff_force", r.pulloff_force, theory["lower_force"], src, 0.5 / N,
                                 kind="bounds", upper=theory["upper_force"]))
-    # cross-method agreement on what both compute
     names = list(results)
     for i in range(len(names)):
         for j in range(i + 1, len(names)):
@@ -136,4 +128,17 @@ def compare(scene: cs.Scene, *, methods=None, resolution: float | None = None, c
                 if q in ta and q in tb:
                     checks.append(Check(f"{names[i]} vs {names[j]}", q, getattr(a, q), getattr(b, q),
                                         names[j], ta[q] + tb[q]))
-    return Comparison(scene, results, theory, tuple(checks), skipped)
+    return tuple(checks)
+
+
+def compare(scene: cs.Scene, *, methods=None, resolution: float | None = None, callback=None) -> Comparison:
+    """Solve ``scene`` with every applicable method (or those named) and check the results."""
+    chosen = applicable_methods(scene) if methods is None else [METHODS[m] for m in methods]
+    skipped = {m.name: m.applies(scene) for m in METHODS.values() if m.applies(scene)}
+    results = {}
+    for m in chosen:
+        r = m.solve(scene, resolution=None if m.name == "fem_reference" else resolution)
+        results[m.name] = r
+        if callback is not None:
+            callback(m.name, r)
+    return Comparison(scene, results, reference_values(scene), check_results(scene, results), skipped)

@@ -41,3 +41,38 @@ def plot_contact(snapshot, ax=None, *, face=None):
     ax.set_aspect("equal")
     ax.set_title(f"d = {snapshot.approach:.4g}")
     return ax
+
+
+def plot_error_vs_time(study, ax=None):
+    """One line per method: relative error of the studied quantity against wall time."""
+    ax = _axes(ax)
+    for m in dict.fromkeys(r.method for r in study.rows):
+        rows = sorted((r for r in study.rows if r.method == m and r.error > 0), key=lambda r: r.wall_time_s)
+        if rows:
+            ax.loglog([r.wall_time_s for r in rows], [r.error for r in rows], "o-", label=m)
+    from matplotlib.ticker import NullFormatter
+
+    ax.xaxis.set_minor_formatter(NullFormatter())
+    ax.yaxis.set_minor_formatter(NullFormatter())
+    ax.set_xlabel("wall time [s]")
+    ax.set_ylabel(f"relative error of {study.quantity}")
+    ax.set_title(f"against {study.reference_name}", fontsize=8)
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_agreement(matrix, scenes, methods, ax=None):
+    """Heat map of |relative difference| (log10) per scene and method; NaN ("-") where not run
+    or where the method is its own reference."""
+    ax = _axes(ax)
+    m = np.log10(np.maximum(np.asarray(matrix, float), 1e-8))
+    im = ax.imshow(m, cmap="viridis_r", vmin=-6, vmax=0, aspect="auto")
+    ax.set_xticks(range(len(methods)), methods, rotation=30, ha="right", fontsize=8)
+    ax.set_yticks(range(len(scenes)), scenes, fontsize=8)
+    for i in range(len(scenes)):
+        for j in range(len(methods)):
+            v = matrix[i][j]
+            ax.text(j, i, "-" if not np.isfinite(v) else f"{v:.1e}", ha="center", va="center", fontsize=7,
+                    color="k" if np.isfinite(v) and v < 1e-3 else "w")
+    ax.figure.colorbar(im, ax=ax, label="log10 |F_A / reference - 1|")
+    return ax

@@ -1,0 +1,77 @@
+"""Regression references: versioned JSON of results with tolerances, stored in the package.
+
+For people who use this package as the reference in their own regression tests, and for
+ours: a change that moves a stored number beyond its tolerance is reported, never silent.
+"""
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+from .cache import package_version
+from .methods import applicable_methods
+from .runner import Job, run_jobs
+from .suite import SUITE
+
+__all__ = ["REFERENCE_FILE", "CASES", "regress", "Mismatch"]
+
+REFERENCE_FILE = Path(__file__).with_name("references") / "suite.json"
+FORMAT = 1
+QUANTITIES = ("pulloff_force", "pulloff_approach", "stiffness")
+#: one quick run per method and suite scene (BEM: 16 elements per radius; FEM: grading 2)
+CASES = {"bem_griffith": 16, "fem_reference": 0.5}
+#: the same code reproduces its numbers to round-off; 1e-7 leaves room for other BLAS/FFT builds
+RTOL = 1e-7
+
+
+@dataclass(frozen=True)
+class Mismatch:
+    scene: str
+    method: str
+    quantity: str
+    stored: float
+    now: float
+    rtol: float
+
+    def explain(self) -> str:
+        return (f"{self.scene}/{self.method}: {self.quantity} = {self.now:.10g}, stored {self.stored:.10g} "
+                f"({self.now / self.stored - 1:+.2e}, tolerance {self.rtol:.0e})")
+
+
+def _jobs():
+    return [Job(SUITE[s], m.name, CASES[m.name]) for s in SUITE for m in applicable_methods(SUITE[s])]
+
+
+def regress(*, update: bool = False, path: Path = REFERENCE_FILE, workers: int = 1, callback=None) -> list[Mismatch]:
+    """Recompute the cases and compare them with ``path`` (or rewrite it with ``update``)."""
+    jobs = _jobs()
+    results = run_jobs(jobs, workers=workers, callback=callback)
+    current = [{"scene": j.scene.name, "method": j.method, "resolution": j.resolution,
+                "values": {q: getattr(r, q) for q in QUANTITIES}, "rtol": RTOL} for j, r in zip(jobs, results)]
+    if update:
+        data = {"format": FORMAT, "package_version": package_version(), "cases": current}
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
+        with os.fdopen(fd, "w") as f:
+            json.dump(data, f, indent=1)
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, path)
+        return []
+    stored = json.loads(Path(path).read_text())
+    if stored.get("format") != FORMAT:
+        raise ValueError(f"{path}: reference format {stored.get('format')!r}, expected {FORMAT}")
+    index = {(c["scene"], c["method"], c["resolution"]): c for c in stored["cases"]}
+    out = []
+    for c in current:
+        ref = index.get((c["scene"], c["method"], c["resolution"]))
+        if ref is None:
+            out.append(Mismatch(c["scene"], c["method"], "(missing from the reference file)", float("nan"), float("nan"), 0))
+            continue
+        for q in QUANTITIES:
+            a, b = ref["values"][q], c["values"][q]
+            if not abs(b - a) <= ref["rtol"] * abs(a):
+                out.append(Mismatch(c["scene"], c["method"], q, a, b, ref["rtol"]))
+    return out

@@ -1,0 +1,164 @@
+"""The method-comparison report over the built-in suite: index.html (images embedded),
+results.json and PNG plots."""
+from __future__ import annotations
+
+import base64
+import html
+import json
+import math
+import os
+import tempfile
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .cache import ResultCache, package_version
+from .compare import check_results, reference_values
+from .methods import METHODS, applicable_methods
+from .runner import Job, run_jobs
+from .study import study
+from .suite import SUITE
+
+__all__ = ["Report", "report", "QUICK", "FULL"]
+
+#: resolutions per method for the quick (< 3 min on 2 cores) and full report
+QUICK = {"bem_griffith": (8, 12, 16), "fem_reference": (0.5, 2 / 3)}
+FULL = {"bem_griffith": (16, 24, 32, 48, 64), "fem_reference": (0.5, 2 / 3, 1.0)}
+
+
+@dataclass(frozen=True, eq=False)
+class Report:
+    directory: Path
+    studies: dict
+    checks: dict
+    passed: bool
+    wall_time_s: float
+
+
+def _write_atomic(path: Path, data: bytes) -> None:
+    # an interrupted run leaves the previous file whole
+    fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
+    with os.fdopen(fd, "wb") as f:
+        f.write(data)
+    os.chmod(tmp, 0o644)
+    os.replace(tmp, path)
+
+
+def _png(fig, path: Path) -> str:
+    import io
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=100, bbox_inches="tight")
+    data = buf.getvalue()
+    _write_atomic(path, data)
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)
+    return base64.b64encode(data).decode()
+
+
+def report(out_dir="report", *, quick: bool = True, workers: int = 1, scheduler=None, cache_dir=".crossval-cache",
+           scenes=None, callback=None) -> Report:
+    """Run the suite, check every method, write the report; returns what it found."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from . import plotting
+
+    t0 = time.perf_counter()
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    res_sets = QUICK if quick else FULL
+    names = list(scenes) if scenes is not None else list(SUITE)
+    cache = ResultCache(cache_dir)
+    jobs = [Job(SUITE[s], m.name, r) for s in names for m in applicable_methods(SUITE[s]) for r in res_sets[m.name]]
+    run_jobs(jobs, workers=workers, scheduler=scheduler, cache=cache, callback=callback)
+
+    studies, checks, finest = {}, {}, {}
+    for s in names:
+        st = study(SUITE[s], resolutions=res_sets, cache=cache)
+        studies[s] = st
+        fin = {}
+        for m in dict.fromkeys(r.method for r in st.rows):
+            rmax = max(r.resolution for r in st.rows if r.method == m)
+            fin[m] = st.results[(m, rmax)]
+        finest[s] = fin
+        checks[s] = check_results(SUITE[s], fin)
+
+    methods = list(METHODS)
+    matrix = []
+    for s in names:
+        st = studies[s]
+        row = []
+        for m in methods:
+            r = finest[s].get(m)
+            own = st.reference_name.startswith(m)   # no closed form: the method is its own reference
+            row.append(abs(r.pulloff_force / st.reference - 1) if r is not None and st.reference and not own
+                       else float("nan"))
+        matrix.append(row)
+
+    sections, data = [], {"package_version": package_version(), "quick": quick, "scenes": {}}
+    fig, ax = plt.subplots(figsize=(6, 0.4 * len(names) + 1.5))
+    plotting.plot_agreement(matrix, names, methods, ax)
+    agreement_png = _png(fig, out / "agreement.png")
+    for s in names:
+        st = studies[s]
+        fig, axs = plt.subplots(1, 3, figsize=(13, 3.6))
+        for m, r in finest[s].items():
+            if r.curve is not None:
+                plotting.plot_curve(r, axs[0], label=f"{m}")
+        th = reference_values(SUITE[s])
+        if "pulloff_force" in th:
+            axs[0].axhline(-th["pulloff_force"], color="grey", lw=0.6, ls=":", label=th["source"])
+        axs[0].legend(fontsize=7)
+        axs[0].set_title(s)
+        bem = finest[s].get("bem_griffith")
+        if bem is not None and bem.last_stable is not None:
+            plotting.plot_contact(bem.last_stable, axs[1])
+            axs[1].set_title("last stable contact (BEM)", fontsize=9)
+        else:
+            axs[1].axis("off")
+        plotting.plot_error_vs_time(st, axs[2])
+        img = _png(fig, out / f"{s}.png")
+        rows = "".join(
+            f"<tr><td>{html.escape(m)}</td><td>{r.pulloff_force:.6g}</td><td>{r.pulloff_approach:.6g}</td>"
+            f"<td>{r.stiffness:.6g}</td><td>{r.curve.contact_area[0] if r.curve is not None else float('nan'):.4g}</td>"
+            f"<td>{r.wall_time_s:.2f}</td><td>{r.converged}</td></tr>" for m, r in finest[s].items())
+        theory_rows = "".join(f"<tr><td>{html.escape(k)}</td><td>{v:.6g}</td></tr>" for k, v in th.items() if k != "source")
+        chk = "".join(f"<li class={'ok' if c.passed else 'fail'}>{'ok' if c.passed else 'FAIL'}: {html.escape(c.explain())}</li>"
+                      for c in checks[s])
+        rates = ", ".join(f"{m}: order {v:.2f}" for m, v in st.rates.items() if math.isfinite(v))
+        notes = "".join(f"<li>{html.escape(m)}: {html.escape(msg)}</li>" for m, r in finest[s].items() for msg in r.messages)
+        sections.append(
+            f"<h2 id='{s}'>{html.escape(s)}</h2><table><tr><th>method</th><th>F_A</th><th>d at F_A</th><th>stiffness</th>"
+            f"<th>initial area</th><th>wall s</th><th>converged</th></tr>{rows}</table>"
+            f"<p>Theory ({html.escape(th.get('source', 'none'))}):</p><table>{theory_rows}</table>"
+            f"<p>Error of the pull-off force measured against {html.escape(st.reference_name)}; fitted {rates}.</p>"
+            f"<ul>{chk}</ul><ul>{notes}</ul><img src='data:image/png;base64,{img}'>")
+        data["scenes"][s] = {
+            "reference": {"value": st.reference, "name": st.reference_name},
+            "runs": [{"method": r.method, "resolution": r.resolution, "wall_time_s": r.wall_time_s,
+                      "pulloff_force": r.value, "error": r.error} for r in st.rows],
+            "finest": {m: {k: v for k, v in r.to_json().items() if k != "curve"} for m, r in finest[s].items()},
+            "checks": [{"method": c.method, "quantity": c.quantity, "value": c.value, "reference": c.reference,
+                        "tolerance": c.tolerance, "passed": c.passed} for c in checks[s]],
+            "rates": st.rates,
+        }
+    passed = all(c.passed for cs_ in checks.values() for c in cs_)
+    data["passed"] = passed
+    wall = time.perf_counter() - t0
+    data["wall_time_s"] = wall
+    page = (
+        "<!doctype html><meta charset='utf-8'><title>adhesive-punch method comparison</title>"
+        "<style>body{font-family:sans-serif;max-width:1300px;margin:auto}table{border-collapse:collapse}"
+        "td,th{border:1px solid #ccc;padding:2px 6px;font-size:13px}.fail{color:#b00}.ok{color:#060}</style>"
+        f"<h1>Method comparison ({'quick' if quick else 'full'} suite)</h1>"
+        f"<p>package {package_version()}; {len(names)} scenes; {'all checks passed' if passed else 'SOME CHECKS FAILED'}; "
+        f"{wall:.0f} s.</p><h2>Agreement</h2><img src='data:image/png;base64,{agreement_png}'>" + "".join(sections))
+    _write_atomic(out / "index.html", page.encode())
+    _write_atomic(out / "results.json", json.dumps(data, indent=1, default=float).encode())
+    return Report(out, studies, checks, passed, wall)
