@@ -55,14 +55,14 @@ def test_cache_is_reused_and_writes_are_atomic(tmp_path, monkeypatch):
 
 
 def test_study_fits_first_order_for_kendall():
-    st = crossval.study.study(SUITE["incompressible_circle"], methods=["bem_griffith"],
+    st = crossval.study(SUITE["incompressible_circle"], methods=["bem_griffith"],
                               resolutions={"bem_griffith": (8, 16, 32)})
     assert st.reference_name.startswith("Kendall")
     assert st.rates["bem_griffith"] > 0.7
 
 
 def test_report_writes_a_self_contained_page(tmp_path):
-    rep = crossval.report.report(tmp_path / "r", quick=True, cache_dir=None, scenes=["kendall_circle", "square"])
+    rep = crossval.report(tmp_path / "r", quick=True, cache_dir=None, scenes=["kendall_circle", "square"])
     assert rep.passed
     page = (tmp_path / "r" / "index.html").read_text()
     assert page.count("data:image/png;base64,") == 3 and "square" in page
