@@ -639,6 +639,10 @@ def _bbox_disjoint(a: Shape, b: Shape) -> bool:
     return ax1 < bx0 or bx1 < ax0 or ay1 < by0 or by1 < ay0
 
 
+def _pairwise_disjoint(shapes) -> bool:
+    return all(_bbox_disjoint(shapes[i], shapes[j]) for i in range(len(shapes)) for j in range(i + 1, len(shapes)))
+
+
 @dataclass(frozen=True)
 class Union(Shape):
     """Union of shapes.  The area is exact when the parts' bounding boxes are disjoint,
@@ -661,8 +665,7 @@ class Union(Shape):
 
     @cached_property
     def _disjoint(self) -> bool:
-        ps = self.parts
-        return all(_bbox_disjoint(ps[i], ps[j]) for i in range(len(ps)) for j in range(i + 1, len(ps)))
+        return _pairwise_disjoint(self.parts)
 
     @property
     def area_is_exact(self):
@@ -718,8 +721,7 @@ class Difference(Shape):
         for c in self.cuts:
             if not isinstance(c, PolygonalShape) or not np.all(base.contains(c._verts[:, 0], c._verts[:, 1])):
                 return False
-        cs = self.cuts
-        return all(_bbox_disjoint(cs[i], cs[j]) for i in range(len(cs)) for j in range(i + 1, len(cs)))
+        return _pairwise_disjoint(self.cuts)
 
     @property
     def area_is_exact(self):
