@@ -671,6 +671,11 @@ class Union(Shape):
     def area_is_exact(self):
         return self._disjoint
 
+    def incircle(self):
+        if self._disjoint:  # separate parts: the largest part's incircle, exactly
+            return max((p.incircle() for p in self.parts), key=lambda c: c.radius)
+        return _raster_incircle(self)
+
     @cached_property
     def area(self):
         if self._disjoint:

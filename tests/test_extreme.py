@@ -1,0 +1,81 @@
+"""Stiff and extreme cases: finite, converged (or saying why not), never NaN."""
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+import bem_griffith as bg
+import contact_scene as cs
+import fem_reference as fr
+from contact_scene import theory as T
+
+
+def circle(material, work=1.0, **kw):
+    return cs.Scene(cs.Indenter(cs.Circle(1.0)), material, cs.Adhesion(work), **kw)
+
+
+@pytest.mark.parametrize("nu", [0.49, 0.499, 0.4999, 0.5])
+def test_fem_does_not_lock_as_nu_tends_to_half(nu):
+    # displacement-only linear elements lock here; the mixed form stays on Kendall (Eq. 1)
+    mat = cs.Homogeneous(1.0, nu)
+    r = fr.solve(circle(mat), fr.FemSettings(grading=2.0))
+    assert r.stiffness == pytest.approx(T.kendall_stiffness(E_star=mat.effective_modulus, radius=1.0), rel=1e-4)
+
+
+@pytest.mark.parametrize("k", [0.9, 0.95, -0.9, -0.95])
+def test_graded_bem_near_the_limits_is_finite_and_stiffness_holds(k):
+    r = bg.solve(circle(cs.PowerLawGraded(1.0, 1.0, k)), bg.Settings(grid=cs.Grid(elements_per_radius=16)))
+    assert r.converged and np.all(np.isfinite(r.curve.force)) and r.pulloff_force > 0
+    # Eq. 34 to the first-order envelope of the stiffness sweep (0.15/N)
+    assert r.stiffness == pytest.approx(T.graded_stiffness(E0=1.0, c0=1.0, k=k, radius=1.0), rel=0.15 / 16)
+    assert any("not calibrated" in m for m in r.messages)
+
+
+def test_tiny_and_huge_work_of_adhesion_are_reported():
+    E = cs.Homogeneous(0.75, 0.5)
+    tiny = bg.solve(circle(E, work=1e-12), bg.Settings(grid=cs.Grid(elements_per_radius=16)))
+    # F_A ~ sqrt(w): the same discretised factor as for w = 1
+    unit = bg.solve(circle(E, work=1.0), bg.Settings(grid=cs.Grid(elements_per_radius=16)))
+    assert tiny.detached and tiny.pulloff_force == pytest.approx(unit.pulloff_force * 1e-6, rel=1e-8)
+    huge = bg.solve(circle(E, work=1e6, loading=cs.Loading(pull_limit=-10.0)), bg.Settings(grid=cs.Grid(elements_per_radius=16)))
+    assert not huge.detached and huge.converged
+    assert any("still attached" in m for m in huge.messages)
+
+
+@pytest.mark.parametrize("aspect", [10, 20])
+def test_elongated_faces_keep_their_shape(aspect):
+    # the last stable state is the rectangle with rounded corners, not the incircle (Figs. 10-11)
+    sc = cs.Scene(cs.Indenter(cs.Rectangle(float(aspect), 1.0)), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
+    r = bg.solve(sc, bg.Settings(grid=cs.Grid(spacing=1 / 8)))
+    assert r.converged and r.detached
+    inc = math.pi * 0.5**2
+    assert r.last_stable.contact_area > 0.9 * aspect > 10 * inc
+
+
+def test_one_element_features_and_coarse_faces():
+    # a brush whose pillars span one to two elements still runs; a face below 4 cells is refused
+    brush = cs.Brush(side=2.0, pillar_radius=0.06, pitch=0.3)
+    sc = cs.Scene(cs.Indenter(brush), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
+    r = bg.solve(sc, bg.Settings(grid=cs.Grid(spacing=0.03)))
+    assert r.converged and r.detached and np.all(np.isfinite(r.curve.force))
+    with pytest.raises(cs.SceneError, match="too coarse"):
+        bg.solve(sc, bg.Settings(grid=cs.Grid(spacing=0.04)))
+
+
+def test_memory_is_estimated_before_allocation():
+    sc = circle(cs.Homogeneous(0.75, 0.5))
+    with pytest.raises(cs.SceneError, match="needs about .* GB"):
+        bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=512), max_memory_gb=0.05))
+
+
+def test_identical_runs_are_bit_identical_and_units_scale_to_1e10():
+    tri = cs.Scene(cs.Indenter(cs.Triangle.equilateral(1.0)), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
+    st = bg.Settings(grid=cs.Grid(elements_per_radius=16), rtol=1e-13)
+    a, b = bg.solve(tri, st), bg.solve(tri, st)
+    assert np.array_equal(a.curve.force, b.curve.force) and np.array_equal(a.curve.approach, b.curve.approach)
+    L, E, w = 0.03, 6020.0, 0.062                     # the paper's triangle (Fig. 13), SI units
+    si = cs.Scene(cs.Indenter(cs.Triangle.equilateral(L)), cs.Homogeneous(E * 0.75, 0.5), cs.Adhesion(w))
+    c = bg.solve(si, st)
+    assert c.pulloff_force / math.sqrt(E * w * L**3) == pytest.approx(a.pulloff_force, rel=1e-10)
+    assert c.pulloff_approach / math.sqrt(w * L / E) == pytest.approx(a.pulloff_approach, rel=1e-10)
