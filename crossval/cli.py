@@ -229,7 +229,15 @@ def study_cmd(file, method_names, resolutions, quantity, workers, as_json):
         if not all(v > 0 for v in vals):
             raise SceneError("resolutions", "must all be > 0")
         res = {m: vals for m in (method_names or METHODS)}
-    st = study(sc, methods=method_names or None, resolutions=res, quantity=quantity, workers=workers)
+    from tqdm.contrib.logging import logging_redirect_tqdm
+
+    from .study import DEFAULT_RESOLUTIONS
+    from .methods import applicable_methods
+
+    names = list(method_names) or [m.name for m in applicable_methods(sc)]
+    bar, cb = _progress(sum(len((res or DEFAULT_RESOLUTIONS)[m]) for m in names), "study")
+    with bar, logging_redirect_tqdm():
+        st = study(sc, methods=names, resolutions=res, quantity=quantity, workers=workers, callback=cb)
     if as_json:
         click.echo(json.dumps({"scene": sc.name, "quantity": quantity, "reference": st.reference,
                                "reference_name": st.reference_name, "rates": st.rates, "time_rates": st.time_rates,

@@ -63,3 +63,14 @@ def test_plugin_fixture_is_registered(pytester):
             assert ref.result.method == "fem_reference"
     """)
     pytester.runpytest().assert_outcomes(passed=1)   # registered through the pytest11 entry point
+
+
+def test_study_cli_reports_rates_and_reference():
+    r = subprocess.run([sys.executable, "-m", "crossval.cli", "study", str(ROOT / "scenes" / "kendall_circle.toml"),
+                        "--method", "bem_griffith", "--resolutions", "8,16,32", "--json"], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    out = json.loads(r.stdout)
+    assert out["reference_name"].startswith("Kendall") and out["rates"]["bem_griffith"] > 0.7
+    bad = subprocess.run([sys.executable, "-m", "crossval.cli", "study", str(ROOT / "scenes" / "square.toml"),
+                          "--method", "fem_reference"], capture_output=True, text=True)
+    assert bad.returncode == 2 and "circular" in bad.stderr
