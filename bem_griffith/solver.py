@@ -303,8 +303,12 @@ def _next_event(prob: Problem, sol: _SetSolution, d: float, target: float) -> fl
     return float(best)
 
 
-def _cascade(prob: Problem, sol: _SetSolution, d: float, settings: Settings, counter: dict, msgs: list):
-    """Detach / re-attach at fixed d until no element exceeds sigma_c and no gap is negative."""
+def _cascade(prob: Problem, sol: _SetSolution, d: float, settings: Settings, counter: dict, msgs: list,
+             direction: float = -1.0):
+    """Detach / re-attach at fixed d until no element exceeds sigma_c and no gap is negative.
+
+    A free element whose gap is zero (to round-off) re-attaches when the gap is closing along
+    the direction of travel: that is the gap event that brought the driver here."""
     cell = prob.spacing**2
     for _ in range(4 * int(prob.face.sum()) + 10):
         t = -sol.pressure(d)
@@ -314,7 +318,7 @@ def _cascade(prob: Problem, sol: _SetSolution, d: float, settings: Settings, cou
         free, a, b = _gap_coeffs(prob, sol)
         gap = a * d + b
         gtol = 1e-12 * max(abs(d), prob.spacing * 1e-6)
-        att_local = gap < -gtol
+        att_local = (gap < -gtol) | ((gap <= gtol) & (a * direction < 0))
         if not det_local.any() and not att_local.any():
             return sol, False
         S = sol.S.copy()
@@ -422,12 +426,12 @@ def solve(scene: Scene, settings: Settings | None = None, *, callback=None) -> R
             lo_d, hi_d = min(d, d_next), max(d, d_next)
             crossing = [ds for ds in want_snaps if lo_d <= ds <= hi_d and ds not in taken]
             _record_snapshot(prob, sol, d_next, crossing, taken, snaps, scene.outputs.fields)
-            d = d_next
+            d_prev, d = d, d_next
             pre = sol
             if settings.driver == "event":
                 # admissible: at an event the first element sits exactly at sigma_c (a peak)
                 record(d, sol)
-            sol, cut = _cascade(prob, sol, d, settings, counter, msgs)
+            sol, cut = _cascade(prob, sol, d, settings, counter, msgs, 1.0 if target > d_prev else -1.0)
             if sol.S is not pre.S:
                 if not sol.S.any():
                     last_stable = Snapshot(float(d), pre.force(d, cell), pre.S.copy(), prob.spacing, prob.origin)

@@ -249,3 +249,19 @@ def test_press_to_force_matches_hertz():
         assert r.stiffness == pytest.approx(2 * E * a_hertz, abs=2 * E * h)   # unloading stiffness 2 E* a
         errs.append(abs(r.approach / d_hertz - 1))
     assert errs[1] < errs[0] / 2.5 and errs[1] < 1e-3                          # better than first order
+
+
+def test_unload_reload_reattaches_the_whole_face():
+    # pull past the first detachments, push back to d > 0: every free face element's gap closes,
+    # so the face is whole again and the final pull-off repeats the plain one
+    st = bg.Settings(grid=cs.Grid(elements_per_radius=16))
+    plain = run(square_scene(), 16)
+    turn = 0.5 * (plain.pulloff_approach + plain.detachment_approach)
+    sc = dataclasses.replace(square_scene(), loading=cs.Loading(turning_points=(turn, 0.2)))
+    r = bg.solve(sc, st)
+    assert r.converged and r.detached
+    top = int(np.argmax(r.curve.approach))
+    assert r.curve.approach[top] == 0.2
+    assert r.curve.contact_area[top] == pytest.approx(plain.curve.contact_area[0], rel=1e-12)
+    assert r.curve.contact_area[np.flatnonzero(r.curve.approach == turn)].min() < plain.curve.contact_area[0]
+    assert r.pulloff_force == pytest.approx(plain.pulloff_force, rel=1e-9)
