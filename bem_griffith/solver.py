@@ -56,6 +56,11 @@ class Problem:
     upper_approach: object = None              # area -> critical approach of the circle of that area
 
 
+def _new_counter() -> dict:
+    return dict(matvecs=0, cg_iterations=0, solves=0, residual=0.0, unconverged=0, unsettled=0,
+                detached_elements=0, cascades_cut=0)
+
+
 def _estimate_memory_gb(nx: int, ny: int) -> float:
     # kernel + its rfft + scratch + two transforms in flight (complex), plus face vectors
     padded = 4 * nx * ny
@@ -237,7 +242,7 @@ def press(scene: Scene, settings: Settings | None = None) -> PressResult:
     return the state; no pull.  Cheap: stiffness studies (Eq. 9) need only this."""
     settings = settings or Settings()
     prob = build_problem(scene, settings)
-    counter = dict(matvecs=0, cg_iterations=0, solves=0, residual=0.0, unconverged=0, unsettled=0, detached_elements=0)
+    counter = _new_counter()
     d0, S0 = _press(prob, scene, settings, counter)
     sol = _solve_set(prob, S0, settings, None, counter)
     cell = prob.spacing**2
@@ -320,7 +325,7 @@ def _cascade(prob: Problem, sol: _SetSolution, d: float, settings: Settings, cou
         gtol = 1e-12 * max(abs(d), prob.spacing * 1e-6)
         att_local = (gap < -gtol) | ((gap <= gtol) & (a * direction < 0))
         if not det_local.any() and not att_local.any():
-            return sol, False
+            return sol
         S = sol.S.copy()
         idx = np.flatnonzero(sol.S.ravel())
         S.ravel()[idx[det_local]] = False
@@ -328,7 +333,7 @@ def _cascade(prob: Problem, sol: _SetSolution, d: float, settings: Settings, cou
         S.ravel()[fidx[att_local]] = True
         counter["detached_elements"] += int(det_local.sum())
         if not S.any():
-            return _empty(prob, S), False
+            return _empty(prob, S)
         if prob.flat and settings.stop_when_certainly_detached and d < 0 and prob.E_star is not None and prob.work > 0:
             # homogeneous only: the circle's strength bounds every face of its area (Eq. 14)
             area = float(S.sum()) * cell
@@ -338,11 +343,11 @@ def _cascade(prob: Problem, sol: _SetSolution, d: float, settings: Settings, cou
                 log.debug("cascade at d = %.6g cut short with %d elements left: |d| > %.3g |d_c,upper| of the "
                           "remaining area (Eq. 14)", d, int(S.sum()), margin)
                 counter["cascades_cut"] += 1
-                return _empty(prob, S), True
+                return _empty(prob, S)
         sol = _solve_set(prob, S, settings, sol, counter)
     msgs.append(f"cascade at d = {d:.6g} did not settle")
     counter["unsettled"] += 1
-    return sol, False
+    return sol
 
 
 def _empty(prob: Problem, S: np.ndarray) -> _SetSolution:
@@ -365,7 +370,7 @@ def _path(scene: Scene, d0: float, prob: Problem) -> tuple[list[float], bool]:
     return [*scene.loading.turning_points, final], user
 
 
-def _record_snapshot(prob, sol, d, want, taken, snaps, fields):
+def _record_snapshot(prob, sol, want, taken, snaps, fields):
     for ds in want:
         if ds in taken:
             continue
@@ -388,8 +393,7 @@ def solve(scene: Scene, settings: Settings | None = None, *, callback=None) -> R
     settings = settings or Settings()
     t0 = time.perf_counter()
     prob = build_problem(scene, settings)
-    counter = dict(matvecs=0, cg_iterations=0, solves=0, residual=0.0, unconverged=0, unsettled=0, detached_elements=0,
-                   cascades_cut=0)
+    counter = _new_counter()
     t1 = time.perf_counter()
     d0, S0 = _press(prob, scene, settings, counter)
     sol = _solve_set(prob, S0, settings, None, counter)
@@ -425,13 +429,13 @@ def solve(scene: Scene, settings: Settings | None = None, *, callback=None) -> R
                 d_next = d + step if (d + step - target) * np.sign(step) < 0 else target
             lo_d, hi_d = min(d, d_next), max(d, d_next)
             crossing = [ds for ds in want_snaps if lo_d <= ds <= hi_d and ds not in taken]
-            _record_snapshot(prob, sol, d_next, crossing, taken, snaps, scene.outputs.fields)
+            _record_snapshot(prob, sol, crossing, taken, snaps, scene.outputs.fields)
             d_prev, d = d, d_next
             pre = sol
             if settings.driver == "event":
                 # admissible: at an event the first element sits exactly at sigma_c (a peak)
                 record(d, sol)
-            sol, cut = _cascade(prob, sol, d, settings, counter, msgs, 1.0 if target > d_prev else -1.0)
+            sol = _cascade(prob, sol, d, settings, counter, msgs, 1.0 if target > d_prev else -1.0)
             if sol.S is not pre.S:
                 if not sol.S.any():
                     last_stable = Snapshot(float(d), pre.force(d, cell), pre.S.copy(), prob.spacing, prob.origin)
