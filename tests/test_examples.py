@@ -10,3 +10,24 @@ def test_kendall_example_agrees_with_theory():
     out = run(resolution=16, fem_grading=2.0)
     assert abs(out["bem"].pulloff_force / out["kendall"] - 1) <= 0.5 / 16     # the BEM envelope
     assert abs(out["fem"].pulloff_force / out["kendall"] - 1) < 1e-4
+
+
+def test_fig04_maxima_lie_between_the_bounds():
+    from examples.fig04_convex_shapes import SHAPES, run
+
+    N = 12
+    out = run(N)
+    for name, o in out.items():
+        lower = -o["incircle"][1]                       # F_A,lower / F_A,upper (Eq. 18 / Eq. 13)
+        assert lower * (1 - 0.5 / N) < o["max"] < 1.0, name
+        assert o["result"].converged and o["result"].detached
+
+
+def test_fig10_elongated_faces_end_as_rounded_rectangles():
+    from examples.fig10_rectangles import run
+
+    out = run(aspects=(1, 4, 8), cells_across=16)
+    assert out[1]["last_stable_fraction"] < 0.9                     # a square ends near its incircle
+    for ar in (4, 8):                                               # elongated ones keep most of the face
+        assert out[ar]["last_stable_fraction"] > 0.8 > 3 * out[ar]["incircle_fraction"]
+    assert out[8]["last_stable_fraction"] > out[4]["last_stable_fraction"]
