@@ -23,7 +23,7 @@ import scipy.sparse.linalg as spla
 from skfem import (Basis, BilinearForm, ElementTriP1, ElementTriP2, ElementTriP3, ElementTriP4, ElementVector,
                    MeshTri, asm)
 
-__all__ = ["Material", "Model", "assemble", "solve_unit_approach", "build_mesh"]
+__all__ = ["Material", "Model", "assemble", "saddle_matrix", "solve_unit_approach", "build_mesh"]
 
 
 @dataclass(frozen=True)
@@ -129,17 +129,24 @@ def _forms(mat: Material):
 _ORDERS = {2: (ElementTriP2, ElementTriP1), 3: (ElementTriP3, ElementTriP2), 4: (ElementTriP4, ElementTriP3)}
 
 
-def assemble(mesh: MeshTri, mat: Material, *, order: int = 2, intorder: int | None = None,
-             face_radius: float = 1.0) -> Model:
+def saddle_matrix(mesh: MeshTri, mat: Material, *, order: int = 2, intorder: int | None = None,
+                  elements: np.ndarray | None = None) -> tuple[sp.csr_matrix, Basis, Basis]:
+    """[[A, B^T], [B, -C]] over all elements, or only over ``elements`` (same global size)."""
     eu, ep = _ORDERS[order]
     intorder = intorder if intorder is not None else 2 * order + 2
-    ub = Basis(mesh, ElementVector(eu()), intorder=intorder)
-    pb = Basis(mesh, ep(), intorder=intorder)
+    kw = {} if elements is None else {"elements": elements}
+    ub = Basis(mesh, ElementVector(eu()), intorder=intorder, **kw)
+    pb = Basis(mesh, ep(), intorder=intorder, **kw)
     a, b, c = _forms(mat)
     A = asm(a, ub)
     B = asm(b, ub, pb)
     C = asm(c, pb)
-    M = sp.bmat([[A, B.T], [B, -C]], format="csr")
+    return sp.bmat([[A, B.T], [B, -C]], format="csr"), ub, pb
+
+
+def assemble(mesh: MeshTri, mat: Material, *, order: int = 2, intorder: int | None = None,
+             face_radius: float = 1.0) -> Model:
+    M, ub, pb = saddle_matrix(mesh, mat, order=order, intorder=intorder)
     L = mesh.p[0].max()
     Z = mesh.p[1].max()
     tol = 1e-12 * L
