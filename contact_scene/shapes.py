@@ -12,7 +12,7 @@ Units are whatever the scene uses (SI recommended); nothing here assumes a scale
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cached_property
 from typing import NamedTuple
 

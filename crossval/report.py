@@ -12,7 +12,6 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-import numpy as np
 
 from .cache import ResultCache, package_version
 from .compare import check_results, reference_values

@@ -9,7 +9,7 @@ import numpy as np
 import contact_scene as cs
 
 from .compare import reference_values
-from .methods import METHODS, applicable_methods
+from .methods import applicable_methods
 from .runner import Job, run_jobs
 
 __all__ = ["StudyRow", "Study", "study", "DEFAULT_RESOLUTIONS"]

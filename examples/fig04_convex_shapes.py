@@ -11,7 +11,6 @@ circle the bound assumes), not discretisation.
 """
 from __future__ import annotations
 
-import math
 
 import contact_scene as cs
 from contact_scene import theory as T

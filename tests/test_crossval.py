@@ -1,6 +1,5 @@
 """The harness: compare, the reference helper and the pytest plugin."""
 import json
-import math
 import subprocess
 import sys
 from pathlib import Path

@@ -1,7 +1,5 @@
 """The examples run (short versions) and say what they claim."""
-import pytest
 
-from contact_scene import theory as T
 
 
 def test_kendall_example_agrees_with_theory():
@@ -13,7 +11,7 @@ def test_kendall_example_agrees_with_theory():
 
 
 def test_fig04_maxima_lie_between_the_bounds():
-    from examples.fig04_convex_shapes import SHAPES, run
+    from examples.fig04_convex_shapes import run
 
     N = 12
     out = run(N)

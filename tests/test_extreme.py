@@ -1,5 +1,4 @@
 """Stiff and extreme cases: finite, converged (or saying why not), never NaN."""
-import dataclasses
 import math
 
 import numpy as np

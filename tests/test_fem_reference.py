@@ -1,7 +1,6 @@
 """The axisymmetric FEM reference against Kendall (Eqs. 1, 4-6) and the graded closed forms
 (Eqs. 34, 38-39).  Tolerances are the issue's targets where the convergence study
 (benchmarks/study_fem.py) meets them, else the level that study reached (noted)."""
-import math
 
 import numpy as np
 import pytest

@@ -1,8 +1,6 @@
 """Long studies, outside CI: ``pytest -m slow``."""
-import math
 from pathlib import Path
 
-import numpy as np
 import pytest
 
 import bem_griffith as bg
