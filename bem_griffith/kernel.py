@@ -28,9 +28,9 @@ def love_square_integral(x, y, half_width: float):
     return _f(x + b, y + b) - _f(x + b, y - b) - _f(x - b, y + b) + _f(x - b, y - b)
 
 
-def love_influence(nx: int, ny: int, spacing: float, E_star: float, padded: tuple[int, int] | None = None) -> np.ndarray:
-    """Influence coefficients for all cell offsets, laid out for a linear (zero-padded) FFT
-    convolution on a ``padded`` grid (default (2 nx) x (2 ny); any size >= 2n - 1 works):
+def _offset_layout(integral, nx: int, ny: int, spacing: float, padded: tuple[int, int] | None) -> np.ndarray:
+    """``integral(X, Y, half_width)`` at every cell offset, laid out for a linear (zero-padded)
+    FFT convolution on a ``padded`` grid (default (2 nx) x (2 ny); any size >= 2n - 1 works):
     entry [i, j] holds offset (i, j) for i < nx and (i - Mx, j) for i > Mx - nx (likewise j);
     entries for offsets no pair of cells can have are zero."""
     Mx, My = padded if padded is not None else (2 * nx, 2 * ny)
@@ -41,10 +41,16 @@ def love_influence(nx: int, ny: int, spacing: float, E_star: float, padded: tupl
     ox = np.where(ix < nx, ix, ix - Mx).astype(float)
     oy = np.where(iy < ny, iy, iy - My).astype(float)
     X, Y = np.meshgrid(ox * spacing, oy * spacing, indexing="ij")
-    K = love_square_integral(X, Y, spacing / 2) / (math.pi * E_star)
+    K = integral(X, Y, spacing / 2)
     K[(ix >= nx) & (ix <= Mx - nx), :] = 0.0
     K[:, (iy >= ny) & (iy <= My - ny)] = 0.0
     return K
+
+
+def love_influence(nx: int, ny: int, spacing: float, E_star: float, padded: tuple[int, int] | None = None) -> np.ndarray:
+    """Influence coefficients of a homogeneous half-space (u = C p), in the layout of
+    :func:`_offset_layout`."""
+    return _offset_layout(love_square_integral, nx, ny, spacing, padded) / (math.pi * E_star)
 
 
 def padded_shape(nx: int, ny: int) -> tuple[int, int]:
@@ -84,13 +90,5 @@ def graded_influence(nx: int, ny: int, spacing: float, E0: float, c0: float, k: 
     like :func:`love_influence`."""
     from contact_scene.theory import graded_green_coefficient
 
-    Mx, My = padded if padded is not None else (2 * nx, 2 * ny)
-    ix = np.arange(Mx)
-    iy = np.arange(My)
-    ox = np.where(ix < nx, ix, ix - Mx).astype(float)
-    oy = np.where(iy < ny, iy, iy - My).astype(float)
-    X, Y = np.meshgrid(ox * spacing, oy * spacing, indexing="ij")
-    K = graded_square_integral(X, Y, spacing / 2, k) * graded_green_coefficient(E0=E0, c0=c0, k=k)
-    K[(ix >= nx) & (ix <= Mx - nx), :] = 0.0
-    K[:, (iy >= ny) & (iy <= My - ny)] = 0.0
-    return K
+    K = _offset_layout(lambda X, Y, b: graded_square_integral(X, Y, b, k), nx, ny, spacing, padded)
+    return K * graded_green_coefficient(E0=E0, c0=c0, k=k)

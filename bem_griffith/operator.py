@@ -36,11 +36,9 @@ class HalfSpaceOperator:
         Mx, My = self.kernel.shape
         if Mx < 2 * nx - 1 or My < 2 * ny - 1:
             raise ValueError(f"kernel shape {self.kernel.shape} too small for grid {self.shape}")
-        khat = sfft.rfft2(self.kernel, workers=self.workers)
-        object.__setattr__(self, "_khat", khat)
         # the symbol of an even real kernel is real: multiply by the real part only
+        khat = sfft.rfft2(self.kernel, workers=self.workers)
         object.__setattr__(self, "_symbol", np.ascontiguousarray(khat.real))
-        object.__setattr__(self, "_symbol32", None)
 
     @property
     def padded_shape(self) -> tuple[int, int]:
@@ -78,7 +76,3 @@ class HalfSpaceOperator:
         p = np.zeros(self.shape, dtype=symbol.dtype)
         p[mask] = values
         return self.convolve(p, symbol)[mask].astype(float)
-
-    @property
-    def self_influence(self) -> float:
-        return float(self.kernel[0, 0])

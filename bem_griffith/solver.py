@@ -174,9 +174,9 @@ def _solve_set(prob: Problem, S: np.ndarray, settings: Settings, warm: _SetSolut
 # pressing without adhesion
 # ---------------------------------------------------------------------------
 
-def _press_to_approach(prob: Problem, d: float, settings: Settings, counter: dict) -> np.ndarray:
+def _press_to_approach(prob: Problem, d: float, settings: Settings, counter: dict) -> _SetSolution:
     """Non-adhesive contact at approach d: an active-set iteration (drop tensile elements,
-    add penetrating ones, re-solve) from the geometric overlap; returns the contact set."""
+    add penetrating ones, re-solve) from the geometric overlap; returns the solved state."""
     face = prob.face
     S = face & (d - prob.height > 0)
     if not S.any():
@@ -191,37 +191,39 @@ def _press_to_approach(prob: Problem, d: float, settings: Settings, counter: dic
         drop = S & (p < 0)
         add = face & ~S & (gap < -tol)
         if not drop.any() and not add.any():
-            return S
+            return sol
         S = (S & ~drop) | add
         if not S.any():  # pragma: no cover - cannot happen for d > 0
             raise SceneError("loading.press_approach", "the press left no contact")
     raise RuntimeError("press: the active set did not settle")  # pragma: no cover
 
 
-def _press(prob: Problem, scene: Scene, settings: Settings, counter: dict) -> tuple[float, np.ndarray]:
+def _press(prob: Problem, scene: Scene, settings: Settings, counter: dict) -> tuple[float, _SetSolution]:
+    """The approach reached by the press and the solved contact state there."""
     lo = scene.loading
     if prob.flat and (lo.press_approach is None or lo.press_approach <= 0) and lo.press_force is None:
-        return 0.0, prob.face.copy()  # touching: the whole face, no stress
+        # touching: the whole face, no stress
+        return 0.0, _solve_set(prob, prob.face.copy(), settings, None, counter)
     if lo.press_approach is not None:
         return lo.press_approach, _press_to_approach(prob, lo.press_approach, settings, counter)
     # press to a force: F(d) is continuous and increasing without adhesion; bracket, then Brent
     target = lo.press_force
     if target == 0.0:
-        return 0.0, prob.face.copy() if prob.flat else prob.face & (prob.height <= prob.height[prob.face].min())
+        S = prob.face.copy() if prob.flat else prob.face & (prob.height <= prob.height[prob.face].min())
+        return 0.0, _solve_set(prob, S, settings, None, counter)
     cell = prob.spacing**2
     hmin = float(prob.height[prob.face].min())
-    sets = {}
+    states = {}
 
     def excess(d):
-        S = _press_to_approach(prob, d, settings, counter)
-        sets[d] = S
-        return _solve_set(prob, S, settings, None, counter).force(d, cell) - target
+        states[d] = _press_to_approach(prob, d, settings, counter)
+        return states[d].force(d, cell) - target
 
     d_hi = hmin + prob.spacing
     while excess(d_hi) < 0:
         d_hi = hmin + 2 * (d_hi - hmin)
     d = optimize.brentq(excess, hmin + 1e-12 * (d_hi - hmin), d_hi, xtol=1e-12 * d_hi, rtol=1e-12)
-    return d, sets[d] if d in sets else _press_to_approach(prob, d, settings, counter)
+    return d, states[d] if d in states else _press_to_approach(prob, d, settings, counter)
 
 
 @dataclass(frozen=True, eq=False)
@@ -243,12 +245,11 @@ def press(scene: Scene, settings: Settings | None = None) -> PressResult:
     settings = settings or Settings()
     prob = build_problem(scene, settings)
     counter = _new_counter()
-    d0, S0 = _press(prob, scene, settings, counter)
-    sol = _solve_set(prob, S0, settings, None, counter)
+    d0, sol = _press(prob, scene, settings, counter)
     cell = prob.spacing**2
     if not sol.converged:
         raise RuntimeError(f"press: contact solve did not converge (residual {sol.residual:.3g})")
-    return PressResult(d0, sol.force(d0, cell), S0, float(S0.sum()) * cell, float(cell * sol.x1.sum()),
+    return PressResult(d0, sol.force(d0, cell), sol.S, float(sol.S.sum()) * cell, float(cell * sol.x1.sum()),
                        prob.spacing, prob.origin)
 
 
@@ -395,8 +396,7 @@ def solve(scene: Scene, settings: Settings | None = None, *, callback=None) -> R
     prob = build_problem(scene, settings)
     counter = _new_counter()
     t1 = time.perf_counter()
-    d0, S0 = _press(prob, scene, settings, counter)
-    sol = _solve_set(prob, S0, settings, None, counter)
+    d0, sol = _press(prob, scene, settings, counter)
     t2 = time.perf_counter()
     cell = prob.spacing**2
     stiffness = float(cell * sol.x1.sum())
