@@ -8,6 +8,7 @@ import numpy as np
 
 import contact_scene as cs
 
+from .compare import force_tolerance
 from .methods import METHODS
 from .suite import scene as builtin_scene
 
@@ -25,14 +26,11 @@ def reference(scene_or_name, *, resolution: float = 64) -> Reference:
     """The most accurate method's result for a scene (or a built-in scene's name): the FEM for
     circular flat punches it covers, else the Griffith BEM at ``resolution`` elements per radius."""
     scene = builtin_scene(scene_or_name) if isinstance(scene_or_name, str) else scene_or_name
-    fem = METHODS["fem_reference"]
-    if fem.applies(scene) is None:
-        r = fem.solve(scene)
-        return Reference(scene, r, max(10 * (r.accuracy_estimate or 0.0), 1e-4))
-    r = METHODS["bem_griffith"].solve(scene, resolution=resolution)
-    N = scene.indenter.shape.equivalent_radius / r.grid_spacing
-    tol = (0.5 if scene.indenter.profile.is_flat else 2.5) / N
-    return Reference(scene, r, tol)
+    if METHODS["fem_reference"].applies(scene) is None:
+        method, r = "fem_reference", METHODS["fem_reference"].solve(scene)
+    else:
+        method, r = "bem_griffith", METHODS["bem_griffith"].solve(scene, resolution=resolution)
+    return Reference(scene, r, force_tolerance(scene, method, r))
 
 
 def _from_curve(approach, force):
