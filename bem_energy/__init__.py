@@ -1,0 +1,40 @@
+"""Energy-minimisation BEM (Rey-style): elastic energy + finite-range adhesive potential,
+hard wall on the face, pull-off by continuation; the zero-range limit by extrapolation."""
+from __future__ import annotations
+
+from contact_scene import Grid, Result, Scene
+
+from .minimisers import Minimum, minimise
+from .potentials import Potential, process_zone_length
+from .problem import EnergyProblem, build_problem
+from .settings import EnergySettings, ZeroRangeSettings
+from .solver import pull_off
+from .zero_range import richardson, zero_range
+
+__all__ = ["solve", "solve_with_resolution", "pull_off", "zero_range", "richardson", "EnergySettings",
+           "ZeroRangeSettings", "Potential", "process_zone_length", "EnergyProblem", "build_problem",
+           "Minimum", "minimise"]
+
+
+def solve(scene: Scene, settings: EnergySettings | ZeroRangeSettings | None = None, *, callback=None) -> Result:
+    """A scene with an adhesion range runs that range; one without (and w > 0) gets the
+    zero-range limit (:func:`zero_range`)."""
+    ad = scene.adhesion
+    if ad.work_of_adhesion > 0 and ad.range is None:
+        if isinstance(settings, EnergySettings):
+            settings = ZeroRangeSettings(energy=settings)
+        return zero_range(scene, settings, callback=callback)
+    if isinstance(settings, ZeroRangeSettings):
+        settings = settings.energy
+    return pull_off(scene, settings or EnergySettings(), callback=callback)
+
+
+def solve_with_resolution(scene: Scene, resolution: float | None, *, callback=None) -> Result:
+    """The registry's entry.  Finite range: ``resolution`` = elements per sqrt(A/pi)
+    (default 32).  Zero range: elements per process zone (default 1)."""
+    ad = scene.adhesion
+    if ad.work_of_adhesion > 0 and ad.range is None:
+        zs = ZeroRangeSettings() if resolution is None else ZeroRangeSettings(elements_per_process_zone=resolution)
+        return zero_range(scene, zs, callback=callback)
+    grid = Grid(elements_per_radius=resolution if resolution is not None else 32.0)
+    return pull_off(scene, EnergySettings(grid=grid), callback=callback)

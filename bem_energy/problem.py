@@ -1,0 +1,118 @@
+"""The discrete energy of a rigid face on a half-space, on a zero-padded FFT grid.
+
+Variables are the surface displacements U (down > 0) of the whole padded grid.  The pressure
+is P = C^-1 U, where C is the circulant of the element influence coefficients zero-padded to
+at least 2n - 1 (its symbol is positive: checked at set-up).  Only face cells interact with the
+punch, so at a stationary point P vanishes off the face and U = C P holds with P supported on
+the face: the circulant of the padded grid then gives the exact non-periodic half-space
+solution, which is why the padding region carries free variables instead of being dropped.
+
+Energy (per the whole face, in J):  Pi(U) = cell * [ 1/2 U.P + sum_face phi(g) ],
+g = U - (d - h) >= 0 on the face (hard wall), h the profile height.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.fft as sfft
+
+from bem_griffith.kernel import graded_influence, love_influence
+from contact_scene import Homogeneous, PowerLawGraded, Scene, SceneError, rasterise
+
+from .potentials import Potential, process_zone_length
+
+__all__ = ["EnergyProblem", "build_problem", "estimate_memory_gb"]
+
+
+def estimate_memory_gb(nx: int, ny: int, memory: int = 10) -> float:
+    """Working memory of one L-BFGS-B solve on the 2n x 2n padded grid: the correction pairs
+    dominate (2 m vectors), plus the symbol and a handful of work arrays."""
+    padded = 4 * nx * ny
+    return padded * 8 * (2 * memory + 16) / 1e9
+
+
+@dataclass(frozen=True, eq=False)
+class EnergyProblem:
+    symbol: np.ndarray        # rfft2 of the padded kernel: U = C P
+    face: np.ndarray          # bool on the padded grid
+    n: tuple[int, int]        # the raster's grid (top-left corner of the padded grid)
+    height: np.ndarray        # profile height on the face cells (1-D, face order)
+    spacing: float
+    origin: tuple[float, float]
+    potential: Potential | None
+    modulus: float            # E* (or E0 for a graded body): sets the process zone
+    self_compliance: float    # C_00: displacement of an element under unit pressure on it
+
+    @property
+    def padded(self) -> tuple[int, int]:
+        return self.face.shape
+
+    @property
+    def cell(self) -> float:
+        return self.spacing**2
+
+    @property
+    def process_zone(self) -> float:
+        if self.potential is None:
+            return math.inf
+        return process_zone_length(modulus=self.modulus, work=self.potential.work, range=self.potential.range)
+
+    def pressure(self, U: np.ndarray) -> np.ndarray:
+        return sfft.irfft2(sfft.rfft2(U) / self.symbol, s=self.padded)
+
+    def displacement(self, P: np.ndarray) -> np.ndarray:
+        return sfft.irfft2(sfft.rfft2(P) * self.symbol, s=self.padded)
+
+    def gap(self, U: np.ndarray, d: float) -> np.ndarray:
+        return U[self.face] - (d - self.height)
+
+    def energy(self, U: np.ndarray, d: float, adhesive: bool, P: np.ndarray | None = None):
+        """(Pi, dPi/dU, P) in physical units."""
+        if P is None:
+            P = self.pressure(U)
+        E = 0.5 * float(np.vdot(U, P))
+        G = P.copy()
+        if adhesive and self.potential is not None:
+            g = self.gap(U, d)
+            E += float(np.sum(self.potential.energy(g)))
+            G[self.face] += self.potential.stress(g)
+        return self.cell * E, self.cell * G, P
+
+    def force(self, P: np.ndarray) -> float:
+        return float(self.cell * np.sum(P[self.face]))
+
+    def crop(self, A: np.ndarray) -> np.ndarray:
+        return A[: self.n[0], : self.n[1]]
+
+
+def build_problem(scene: Scene, spacing: float, potential: Potential | None, *, memory: int = 10,
+                  max_memory_gb: float = 8.0) -> EnergyProblem:
+    shape = scene.indenter.shape
+    raster = rasterise(shape, spacing)
+    nx, ny = raster.shape
+    need = estimate_memory_gb(nx, ny, memory)
+    if need > max_memory_gb:
+        raise SceneError("settings.grid", f"a {nx} x {ny} grid needs about {need:.1f} GB for the energy "
+                         f"method (> {max_memory_gb:g}); coarsen the grid")
+    M = (2 * nx, 2 * ny)
+    mat = scene.material
+    if isinstance(mat, Homogeneous):
+        modulus = mat.effective_modulus
+        K = love_influence(nx, ny, spacing, modulus, M)
+    elif isinstance(mat, PowerLawGraded):
+        modulus = mat.surface_modulus
+        K = graded_influence(nx, ny, spacing, mat.surface_modulus, mat.reference_depth, mat.exponent, M)
+    else:  # pragma: no cover - Scene validates the material
+        raise SceneError("material", f"unsupported material {type(mat).__name__}")
+    symbol = sfft.rfft2(K).real
+    if not symbol.min() > 0:
+        raise SceneError("material", "the padded influence matrix is not positive definite for this material "
+                         f"(smallest eigenvalue {symbol.min():.3g}); the energy method cannot use it")
+    face = np.zeros(M, bool)
+    face[:nx, :ny] = raster.mask
+    X, Y = raster.centres()
+    height = np.asarray(scene.indenter.profile.height(X, Y), float)[raster.mask]
+    return EnergyProblem(symbol, face, (nx, ny), height, float(spacing), raster.origin, potential,
+                         float(modulus), float(K[0, 0]))

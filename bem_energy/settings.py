@@ -1,0 +1,75 @@
+"""Discretisation and solver settings of the energy-minimisation BEM."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from contact_scene import Grid, SceneError
+from contact_scene.errors import check_choice, check_int, check_real
+
+__all__ = ["EnergySettings", "ZeroRangeSettings"]
+
+
+@dataclass(frozen=True)
+class EnergySettings:
+    """How one finite-range pull-off is discretised and solved.
+
+    grid
+        Element size, as for the Griffith solver.  The element should not exceed the
+        process zone l_c = E* rho^2 / w; a coarser grid is run but reported in the messages.
+    minimiser
+        ``"lbfgsb"`` (default): scipy's bound-constrained L-BFGS-B on the surface
+        displacement of the zero-padded grid (bounds = the hard wall on the face).
+        ``"pk"``: a projected, Fourier-preconditioned conjugate-gradient iteration in the style
+        of Polonsky-Keer and Rey et al. ``"cvxpy"``: the convex QP (no adhesion) or the
+        convex-concave procedure with dense face matrices, for small grids only.
+    steps
+        Continuation steps over the default pull range; the snap-off is then located by
+        bisection to ``snap_tolerance`` (relative to the Kendall approach of the face).
+    gtol
+        Stop when the projected gradient of the scaled energy is below this (scaled so that
+        the adhesive stress and the elastic stiffness of one element are of order one).
+    """
+
+    grid: Grid = field(default_factory=lambda: Grid(elements_per_radius=32))
+    minimiser: str = "lbfgsb"
+    steps: int = 40
+    snap_tolerance: float = 1e-4
+    gtol: float = 1e-6
+    max_iterations: int = 50_000
+    memory: int = 10
+    max_face_elements_cvxpy: int = 700
+
+    def __post_init__(self):
+        if not isinstance(self.grid, Grid):
+            raise SceneError("settings.grid", "must be a contact_scene.Grid")
+        check_choice("settings.minimiser", self.minimiser, {"lbfgsb", "pk", "cvxpy"})
+        object.__setattr__(self, "steps", check_int("settings.steps", self.steps, lo=2, hi=100_000))
+        object.__setattr__(self, "snap_tolerance", check_real("settings.snap_tolerance", self.snap_tolerance, lo=0, hi=0.1, lo_open=True))
+        object.__setattr__(self, "gtol", check_real("settings.gtol", self.gtol, lo=0, hi=1e-2, lo_open=True))
+        object.__setattr__(self, "max_iterations", check_int("settings.max_iterations", self.max_iterations, lo=1))
+        object.__setattr__(self, "memory", check_int("settings.memory", self.memory, lo=1, hi=100))
+
+
+@dataclass(frozen=True)
+class ZeroRangeSettings:
+    """The JKR (zero-range) limit: finite-range runs at process zones l_c = r * a
+    (a = sqrt(A/pi)) for r in ``ratios``, each on a grid with ``elements_per_process_zone``
+    elements per l_c, extrapolated to l_c -> 0 (Richardson, rate ``rate`` in l_c)."""
+
+    ratios: tuple[float, ...] = (0.04, 0.02, 0.01)
+    elements_per_process_zone: float = 1.0
+    rate: float | None = None
+    minimum_elements_per_radius: float = 16.0
+    potential: str = "exponential"
+    energy: EnergySettings = field(default_factory=EnergySettings)
+
+    def __post_init__(self):
+        rs = tuple(check_real("settings.ratios", r, lo=0, hi=1, lo_open=True) for r in self.ratios)
+        if len(rs) < 2 or len(set(rs)) != len(rs):
+            raise SceneError("settings.ratios", "need at least two distinct process-zone ratios l_c / a")
+        object.__setattr__(self, "ratios", tuple(sorted(rs, reverse=True)))
+        object.__setattr__(self, "elements_per_process_zone",
+                           check_real("settings.elements_per_process_zone", self.elements_per_process_zone, lo=0.25, hi=64))
+        if self.rate is not None:
+            object.__setattr__(self, "rate", check_real("settings.rate", self.rate, lo=0, hi=4, lo_open=True))
+        check_choice("settings.potential", self.potential, {"exponential", "maugis_dugdale"})

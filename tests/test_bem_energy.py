@@ -1,0 +1,153 @@
+"""The energy-minimisation BEM: its minimisers against each other, the non-adhesive stiffness
+against the Griffith solver on the same grid, finite-range convergence under refinement and
+the zero-range (Kendall) limit.
+
+Tolerances: minimisers stop at a projected gradient of 1e-6 (in units of the pressure that
+moves one element by the range), which bounds force differences by about that relative
+amount; the finite-range and zero-range tolerances come from the sweeps in
+benchmarks/study_energy.py (quoted at each test).
+"""
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+import bem_energy as be
+import bem_griffith as bg
+import contact_scene as cs
+from contact_scene import theory as T
+
+W = 0.02
+
+
+def circle(radius=1.0, work=W, range_=None, potential="exponential", **kw):
+    return cs.Scene(cs.Indenter(cs.Circle(radius)), cs.Homogeneous(1.0, 0.0),
+                    cs.Adhesion(work, range_, potential), **kw)
+
+
+def rho_for(ratio, a=1.0, work=W, E=1.0):
+    """The range whose process zone l_c = E rho^2 / w is ``ratio`` a."""
+    return math.sqrt(ratio * a * work / E)
+
+
+# -- the three minimisers ----------------------------------------------------
+
+@pytest.mark.parametrize("kind", ["exponential", "maugis_dugdale"])
+@pytest.mark.parametrize("adhesive,d", [(False, 0.05), (True, -0.12)])
+def test_three_minimisers_reach_the_same_minimum(kind, adhesive, d):
+    sc = circle(range_=rho_for(0.3), potential=kind)
+    prob = be.build_problem(sc, 1 / 6, be.Potential(W, rho_for(0.3), kind))
+    U0 = np.zeros(prob.padded)   # attached start: the face on the wall
+    out = {m: be.minimise(prob, U0, d, adhesive, method=m, gtol=1e-8) for m in ("lbfgsb", "pk", "cvxpy")}
+    ref = out["cvxpy"]
+    L = prob.potential.range
+    for name, m in out.items():
+        assert m.gradient <= 1e-7, name
+        assert np.max(np.abs(m.U - ref.U)[prob.face]) <= 1e-6 * L, name
+        assert prob.force(m.P) == pytest.approx(prob.force(ref.P), rel=1e-6), name
+        assert m.energy == pytest.approx(ref.energy, rel=1e-9, abs=1e-12), name
+    # traction-free off the face: the padded circulant reproduces the non-periodic half-space
+    P = out["lbfgsb"].P
+    assert np.max(np.abs(P[~prob.face])) <= 1e-5 * np.max(np.abs(P[prob.face]))
+
+
+def test_no_adhesion_stiffness_equals_griffith_on_the_same_grid():
+    sc = circle(work=0.0)
+    N = 16
+    r_e = be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=N)))
+    r_g = bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=N)))
+    # the same discrete problem (same raster, same Love coefficients): agreement to tolerance
+    assert r_e.stiffness == pytest.approx(r_g.stiffness, rel=1e-6)
+    # and the staircase envelope of the Griffith study (0.15 Delta / a)
+    assert abs(r_e.stiffness / T.kendall_stiffness(E_star=1.0, radius=1.0) - 1) <= 0.15 / N
+    assert r_e.pulloff_force == 0.0 and r_e.detached
+
+
+def test_pulloff_from_attached_branch_snaps_and_reports_process_zone():
+    sc = circle(range_=rho_for(0.16))
+    r = be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=16), minimiser="pk"))
+    assert r.converged and r.detached
+    assert r.info["process_zone"] == pytest.approx(0.16)
+    assert r.info["process_zone_per_element"] == pytest.approx(0.16 * 16)
+    c = r.curve
+    assert c.contact_area[0] == pytest.approx(r.info["face_elements"] / 16**2)
+    assert c.force[-1] > -0.05 * r.pulloff_force          # snapped: almost no tension left
+    assert r.detachment_approach < r.pulloff_approach < 0
+    # finite range weakens the punch below Kendall (sqrt-like in l_c/a, see the zero-range test)
+    FK = T.kendall_adhesion_force(E_star=1.0, radius=1.0, work=W)
+    assert 0.6 < r.pulloff_force / FK < 1.0
+    # the minimisers agree on the whole pull-off
+    r2 = be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=16), minimiser="lbfgsb"))
+    assert r2.pulloff_force == pytest.approx(r.pulloff_force, rel=1e-5)
+    assert r2.pulloff_approach == pytest.approx(r.pulloff_approach, abs=1e-3 * abs(r.pulloff_approach))
+
+
+def test_unresolved_process_zone_is_reported():
+    sc = circle(range_=rho_for(0.02))
+    r = be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=16), minimiser="pk"))
+    assert any("trapped by the mesh" in m for m in r.messages)
+
+
+def test_unit_scaling():
+    """Lengths x s, moduli x m, work x m s: forces x m s^2, approaches x s."""
+    s, mscale = 1e-3, 1e6
+    base = circle(range_=rho_for(0.16))
+    scaled = cs.Scene(cs.Indenter(cs.Circle(s)), cs.Homogeneous(mscale, 0.0),
+                      cs.Adhesion(W * mscale * s, rho_for(0.16) * s))
+    st = be.EnergySettings(grid=cs.Grid(elements_per_radius=12), minimiser="pk")
+    r1, r2 = be.solve(base, st), be.solve(scaled, st)
+    assert r2.pulloff_force / (mscale * s**2) == pytest.approx(r1.pulloff_force, rel=1e-8)
+    assert r2.pulloff_approach / s == pytest.approx(r1.pulloff_approach, rel=1e-8)
+
+
+def test_rotation_by_quarter_turn_and_mirror_give_identical_forces():
+    tri = cs.Triangle.equilateral(1.0)
+    sc = cs.Scene(cs.Indenter(tri), cs.Homogeneous(1.0, 0.0), cs.Adhesion(W, rho_for(0.2)))
+    st = be.EnergySettings(grid=cs.Grid(elements_per_radius=10), minimiser="pk")
+    r0 = be.solve(sc, st)
+    for shape in (tri.rotated(90.0), tri.mirrored()):
+        r = be.solve(dataclasses.replace(sc, indenter=cs.Indenter(shape)), st)
+        assert r.pulloff_force == pytest.approx(r0.pulloff_force, rel=1e-6)
+
+
+def test_bad_settings_are_refused():
+    with pytest.raises(cs.SceneError, match="settings.minimiser"):
+        be.EnergySettings(minimiser="newton")
+    with pytest.raises(cs.SceneError, match="settings.ratios"):
+        be.ZeroRangeSettings(ratios=(0.1,))
+    sc = circle(range_=0.05)
+    with pytest.raises(cs.SceneError, match="cvxpy is for small grids"):
+        be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=32), minimiser="cvxpy"))
+    with pytest.raises(cs.SceneError, match="adhesion.range"):
+        cs.Adhesion(W, -1.0)
+
+
+# -- finite range: grid convergence at fixed rho ----------------------------------
+
+@pytest.fixture(scope="module")
+def finite_range_sweep():
+    sc = circle(range_=rho_for(0.16))
+    Ns = (8, 12, 16, 24)
+    return Ns, [be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=N), minimiser="pk")) for N in Ns]
+
+
+def test_finite_range_converges_under_refinement(finite_range_sweep):
+    """At fixed rho (l_c = 0.16 a, resolved from 8 elements per radius on), successive
+    differences of F_A shrink with a fitted rate of at least one in Delta."""
+    Ns, rs = finite_range_sweep
+    F = np.array([r.pulloff_force for r in rs])
+    h = 1.0 / np.array(Ns, float)
+    diffs = np.abs(np.diff(F))
+    rate = np.polyfit(np.log(h[1:]), np.log(diffs), 1)[0]
+    assert rate >= 1.0
+    assert diffs[-1] <= 0.01 * F[-1]
+
+
+# -- zero range: Kendall by Richardson extrapolation ------------------------------
+
+def test_richardson_recovers_a_known_limit():
+    h = np.array([0.32, 0.16, 0.08])
+    F = 2.0 - 0.7 * h**0.5
+    F0, p, est = be.richardson(h, F, None)
+    assert F0 == pytest.approx(2.0, rel=1e-9) and p == pytest.approx(0.5, rel=1e-6) and est < 1e-9
