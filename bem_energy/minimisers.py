@@ -59,12 +59,16 @@ def projected_gradient(prob: EnergyProblem, U: np.ndarray, G: np.ndarray, d: flo
 
 def minimise(prob: EnergyProblem, U0: np.ndarray, d: float, adhesive: bool, *, method: str = "lbfgsb",
              gtol: float = 1e-6, max_iterations: int = 50_000, memory: int = 10) -> Minimum:
-    if method == "lbfgsb":
-        return _lbfgsb(prob, U0, d, adhesive, gtol, max_iterations, memory)
-    if method == "pk":
-        return _projected_cg(prob, U0, d, adhesive, gtol, max_iterations)
-    if method == "cvxpy":
-        return _cvxpy(prob, U0, d, adhesive, gtol, max_iterations)
+    # the vector work (L-BFGS-B's updates, the dot products here) goes through BLAS; threaded
+    # BLAS on these vector sizes was measured 4x (L-BFGS-B) to 20x (dot products) slower on
+    # this shared 2-core machine, so every minimisation runs with one BLAS thread
+    with threadpool_limits(limits=1, user_api="blas"):
+        if method == "lbfgsb":
+            return _lbfgsb(prob, U0, d, adhesive, gtol, max_iterations, memory)
+        if method == "pk":
+            return _projected_cg(prob, U0, d, adhesive, gtol, max_iterations)
+        if method == "cvxpy":
+            return _cvxpy(prob, U0, d, adhesive, gtol, max_iterations)
     raise ValueError(f"unknown minimiser {method!r}")
 
 
@@ -88,12 +92,9 @@ def _lbfgsb(prob, U0, d, adhesive, gtol, max_iterations, memory) -> Minimum:
         return E / e, G.ravel() * (L / e)
 
     bounds = optimize.Bounds((lb / L).ravel(), np.inf)
-    # L-BFGS-B's vector work goes through BLAS; threaded BLAS on small vectors was measured
-    # four times slower here (see benchmarks/bench_energy.py), so one thread
-    with threadpool_limits(limits=1, user_api="blas"):
-        res = optimize.minimize(fun, x0, jac=True, method="L-BFGS-B", bounds=bounds,
-                                options=dict(maxcor=memory, ftol=0.0, gtol=0.1 * gtol, maxiter=max_iterations,
-                                             maxfun=2 * max_iterations, maxls=40))
+    res = optimize.minimize(fun, x0, jac=True, method="L-BFGS-B", bounds=bounds,
+                            options=dict(maxcor=memory, ftol=0.0, gtol=0.1 * gtol, maxiter=max_iterations,
+                                         maxfun=2 * max_iterations, maxls=40))
     U = res.x.reshape(M) * L
     E, G, P = prob.energy(U, d, adhesive)
     pg = projected_gradient(prob, U, G, d, L)

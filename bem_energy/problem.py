@@ -29,7 +29,7 @@ __all__ = ["EnergyProblem", "build_problem", "estimate_memory_gb"]
 def estimate_memory_gb(nx: int, ny: int, memory: int = 10) -> float:
     """Working memory of one L-BFGS-B solve on the 2n x 2n padded grid: the correction pairs
     dominate (2 m vectors), plus the symbol and a handful of work arrays."""
-    padded = 4 * nx * ny
+    padded = 4 * max(nx, ny) ** 2
     return padded * 8 * (2 * memory + 16) / 1e9
 
 
@@ -96,14 +96,18 @@ def build_problem(scene: Scene, spacing: float, potential: Potential | None, *, 
     if need > max_memory_gb:
         raise SceneError("settings.grid", f"a {nx} x {ny} grid needs about {need:.1f} GB for the energy "
                          f"method (> {max_memory_gb:g}); coarsen the grid")
-    M = (2 * nx, 2 * ny)
+    # a square window of the kernel: truncating the Love kernel to an elongated window (2 nx x
+    # 2 ny for a 4:1 rectangle) gave a circulant with negative eigenvalues; the square one
+    # stays positive definite (checked below)
+    n = max(nx, ny)
+    M = (2 * n, 2 * n)
     mat = scene.material
     if isinstance(mat, Homogeneous):
         modulus = mat.effective_modulus
-        K = love_influence(nx, ny, spacing, modulus, M)
+        K = love_influence(n, n, spacing, modulus, M)
     elif isinstance(mat, PowerLawGraded):
         modulus = mat.surface_modulus
-        K = graded_influence(nx, ny, spacing, mat.surface_modulus, mat.reference_depth, mat.exponent, M)
+        K = graded_influence(n, n, spacing, mat.surface_modulus, mat.reference_depth, mat.exponent, M)
     else:  # pragma: no cover - Scene validates the material
         raise SceneError("material", f"unsupported material {type(mat).__name__}")
     symbol = sfft.rfft2(K).real

@@ -31,7 +31,7 @@ class EnergySettings:
     """
 
     grid: Grid = field(default_factory=lambda: Grid(elements_per_radius=32))
-    minimiser: str = "lbfgsb"
+    minimiser: str = "pk"
     steps: int = 40
     snap_tolerance: float = 1e-4
     gtol: float = 1e-6
@@ -54,12 +54,13 @@ class EnergySettings:
 class ZeroRangeSettings:
     """The JKR (zero-range) limit: finite-range runs at process zones l_c = r * a
     (a = sqrt(A/pi)) for r in ``ratios``, each on a grid with ``elements_per_process_zone``
-    elements per l_c, extrapolated to l_c -> 0 (Richardson, rate ``rate`` in l_c)."""
+    elements per l_c (and at least ``minimum_elements_per_radius``), extrapolated to
+    l_c -> 0 by a least-squares fit of F0 + c l_c^rate (see :func:`bem_energy.richardson`)."""
 
-    ratios: tuple[float, ...] = (0.04, 0.02, 0.01)
-    elements_per_process_zone: float = 1.0
-    rate: float | None = None
-    minimum_elements_per_radius: float = 16.0
+    ratios: tuple[float, ...] = (0.32, 0.16, 0.08, 0.04)
+    elements_per_process_zone: float = 2.0
+    rate: float = 0.5
+    minimum_elements_per_radius: float = 24.0
     potential: str = "exponential"
     energy: EnergySettings = field(default_factory=EnergySettings)
 
@@ -70,6 +71,7 @@ class ZeroRangeSettings:
         object.__setattr__(self, "ratios", tuple(sorted(rs, reverse=True)))
         object.__setattr__(self, "elements_per_process_zone",
                            check_real("settings.elements_per_process_zone", self.elements_per_process_zone, lo=0.25, hi=64))
-        if self.rate is not None:
-            object.__setattr__(self, "rate", check_real("settings.rate", self.rate, lo=0, hi=4, lo_open=True))
+        object.__setattr__(self, "rate", check_real("settings.rate", self.rate, lo=0, hi=4, lo_open=True))
+        object.__setattr__(self, "minimum_elements_per_radius",
+                           check_real("settings.minimum_elements_per_radius", self.minimum_elements_per_radius, lo=4, hi=1e4))
         check_choice("settings.potential", self.potential, {"exponential", "maugis_dugdale"})

@@ -1,6 +1,7 @@
 """The ``crossval`` command line.  Only this module prints."""
 from __future__ import annotations
 
+import dataclasses
 import json
 import logging
 import sys
@@ -67,12 +68,18 @@ def scene_check(file, as_json):
 @click.argument("file", type=click.Path(dir_okay=False))
 @click.option("--method", "method_name", required=True, type=click.Choice(sorted(METHODS)), help="Which solver.")
 @click.option("--resolution", type=float, default=None,
-              help="BEM: elements across the equivalent radius sqrt(A/pi). Default: the method's own.")
+              help="BEM: elements across the equivalent radius sqrt(A/pi); bem_energy in the zero-range "
+                   "limit: elements per process zone; FEM: 1/grading. Default: the method's own.")
+@click.option("--range", "range_", type=float, default=None,
+              help="Interaction range of the adhesive potential (bem_energy): run this finite range "
+                   "instead of the zero-range limit.")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON (fixed keys for every method).")
 @_scene_errors_exit_2
-def solve_cmd(file, method_name, resolution, as_json):
+def solve_cmd(file, method_name, resolution, range_, as_json):
     """Run one method on the scene in FILE."""
     sc = load_scene(file)
+    if range_ is not None:
+        sc = dataclasses.replace(sc, adhesion=dataclasses.replace(sc.adhesion, range=range_))
     method = get_method(method_name)
     why_not = method.applies(sc)
     if why_not:

@@ -6,6 +6,10 @@ Tolerances come from the convergence studies (README, "Accuracy, as measured"):
   (first order from above, about 1.9/N measured).  Other faces: between the lower bound (Eq. 18,
   less the same 0.5/N envelope) and the upper bound (Eq. 13).
 * fem_reference: ten times its own a-posteriori estimate, at least 1e-4.
+* bem_energy, zero-range limit: F_A within its extrapolation estimate, at least 1 % (the circle
+  sweep of benchmarks/study_energy.py); stiffness as the Griffith solver on its finest grid;
+  the approach is that of the finest finite range and not checked.  A finite-range scene is not the zero-range theory: its pull-off
+  is not checked against Kendall or the other methods.
 * Graded pull-off from the BEM is not checked: its criterion is uncalibrated for k != 0
   (reported, not hidden).
 """
@@ -94,6 +98,8 @@ def force_tolerance(scene: cs.Scene, method: str, result: cs.Result) -> float:
     """Relative accuracy of a method's pull-off force, from the convergence studies."""
     if method == "fem_reference":
         return max(10 * (result.accuracy_estimate or 0.0), 1e-4)
+    if method == "bem_energy" and "zero_range" in result.info:
+        return max(result.accuracy_estimate or 0.0, 0.01)
     N = scene.indenter.shape.equivalent_radius / result.grid_spacing
     return (0.5 if scene.indenter.profile.is_flat else 2.5) / N
 
@@ -107,6 +113,10 @@ def _tolerances(scene: cs.Scene, method: str, result: cs.Result) -> dict:
     N = scene.indenter.shape.equivalent_radius / result.grid_spacing
     # stiffness: the fitted 0.15/N plus the staircase (K ~ sqrt(A): half of sqrt(2) P h / A, P/A = 2/a)
     tol = {"pulloff_force": t, "pulloff_approach": 0.6 / N, "stiffness": 0.15 / N + math.sqrt(2) / N}
+    if method == "bem_energy":
+        if "zero_range" not in result.info:
+            return {"stiffness": tol["stiffness"]}
+        tol.pop("pulloff_approach")   # a finite-range approach, not extrapolated (see bem_energy.zero_range)
     if isinstance(scene.material, cs.PowerLawGraded) and scene.material.exponent != 0:
         tol.pop("pulloff_force")
         tol.pop("pulloff_approach")
@@ -123,9 +133,10 @@ def check_results(scene: cs.Scene, results: dict) -> tuple[Check, ...]:
         for q in ("pulloff_force", "pulloff_approach", "stiffness"):
             if q in theory and q in tol:
                 checks.append(Check(name, q, getattr(r, q), theory[q], src, tol[q]))
-        if "upper_force" in theory:
+        if "upper_force" in theory and "pulloff_force" in tol:
             N = scene.indenter.shape.equivalent_radius / r.grid_spacing
-            checks.append(Check(name, "pulloff_force", r.pulloff_force, theory["lower_force"], src, 0.5 / N,
+            slack = tol["pulloff_force"] if name == "bem_energy" else 0.5 / N
+            checks.append(Check(name, "pulloff_force", r.pulloff_force, theory["lower_force"], src, slack,
                                 kind="bounds", upper=theory["upper_force"]))
     names = list(results)
     for i in range(len(names)):
@@ -145,7 +156,7 @@ def compare(scene: cs.Scene, *, methods=None, resolution: float | None = None, c
     skipped = {m.name: m.applies(scene) for m in METHODS.values() if m.applies(scene)}
     results = {}
     for m in chosen:
-        r = m.solve(scene, resolution=None if m.name == "fem_reference" else resolution)
+        r = m.solve(scene, resolution=resolution if m.resolution_is_grid(scene) else None)
         results[m.name] = r
         if callback is not None:
             callback(m.name, r)

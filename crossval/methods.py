@@ -21,6 +21,15 @@ class Method:
     description: str
     applies: Callable[[Scene], str | None]  # None when it applies, else the reason it does not
 
+    def resolution_is_grid(self, scene: Scene) -> bool:
+        """Whether ``resolution`` means BEM elements per radius for this scene (the FEM's is
+        a mesh grading, the zero-range energy method's elements per process zone)."""
+        if self.name == "fem_reference":
+            return False
+        if self.name == "bem_energy":
+            return not (scene.adhesion.range is None and scene.adhesion.work_of_adhesion > 0)
+        return True
+
     def solve(self, scene: Scene, *, resolution: float | None = None, callback=None):
         mod = importlib.import_module(self.module)
         return mod.solve_with_resolution(scene, resolution, callback=callback)
@@ -36,11 +45,27 @@ def _fem_applies(scene: Scene) -> str | None:
     return applies(scene)
 
 
+def _energy_applies(scene: Scene) -> str | None:
+    import contact_scene as cs
+
+    if not isinstance(scene.material, cs.Homogeneous):
+        return "the energy method is validated for homogeneous half-spaces only"
+    if scene.adhesion.range is None and scene.adhesion.work_of_adhesion > 0 and not scene.indenter.profile.is_flat:
+        return ("its zero-range extrapolation is calibrated on flat faces (the edge of a flat punch); "
+                "give adhesion.range to run a finite range")
+    return None
+
+
 METHODS: dict[str, Method] = {
     "bem_griffith": Method(
         "bem_griffith", "bem_griffith",
         "FFT boundary elements with the Pohrt-Popov local Griffith detachment criterion",
         _griffith_applies,
+    ),
+    "bem_energy": Method(
+        "bem_energy", "bem_energy",
+        "FFT boundary elements minimising elastic + finite-range adhesive energy (zero-range limit by extrapolation)",
+        _energy_applies,
     ),
     "fem_reference": Method(
         "fem_reference", "fem_reference",

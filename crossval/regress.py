@@ -21,8 +21,9 @@ __all__ = ["REFERENCE_FILE", "CASES", "regress", "Mismatch"]
 REFERENCE_FILE = Path(__file__).with_name("references") / "suite.json"
 FORMAT = 1
 QUANTITIES = ("pulloff_force", "pulloff_approach", "stiffness")
-#: one quick run per method and suite scene (BEM: 16 elements per radius; FEM: grading 2)
-CASES = {"bem_griffith": 16, "fem_reference": 0.5}
+#: one quick run per method and suite scene (BEM: 16 elements per radius; energy BEM: one
+#: element per process zone; FEM: grading 2)
+CASES = {"bem_griffith": 16, "bem_energy": 1.0, "fem_reference": 0.5}
 #: the same code reproduces its numbers to round-off; 1e-7 leaves room for other BLAS/FFT builds
 RTOL = 1e-7
 

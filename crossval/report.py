@@ -23,8 +23,9 @@ from .suite import SUITE
 __all__ = ["Report", "report", "QUICK", "FULL"]
 
 #: resolutions per method for the quick (< 3 min on 2 cores) and full report
-QUICK = {"bem_griffith": (8, 12, 16), "fem_reference": (0.5, 2 / 3)}
-FULL = {"bem_griffith": (16, 24, 32, 48, 64), "fem_reference": (0.5, 2 / 3, 1.0)}
+#: (bem_energy in the zero-range limit: elements per process zone)
+QUICK = {"bem_griffith": (8, 12, 16), "bem_energy": (1.0,), "fem_reference": (0.5, 2 / 3)}
+FULL = {"bem_griffith": (16, 24, 32, 48, 64), "bem_energy": (1.0, 2.0), "fem_reference": (0.5, 2 / 3, 1.0)}
 
 
 @dataclass(frozen=True, eq=False)

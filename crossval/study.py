@@ -16,11 +16,12 @@ __all__ = ["StudyRow", "Study", "study", "DEFAULT_RESOLUTIONS"]
 
 #: per method, the resolutions a study sweeps unless told otherwise (BEM: elements per
 #: radius; FEM: 1/grading)
-DEFAULT_RESOLUTIONS = {"bem_griffith": (8, 12, 16, 24, 32), "fem_reference": (0.5, 2 / 3, 1.0)}
+DEFAULT_RESOLUTIONS = {"bem_griffith": (8, 12, 16, 24, 32), "bem_energy": (1.0, 2.0, 3.0),
+                       "fem_reference": (0.5, 2 / 3, 1.0)}
 
 # the most accurate method first: the finest run of the first applicable one is the
 # reference where the scene has no closed form
-_ACCURACY_ORDER = ("fem_reference", "bem_griffith")
+_ACCURACY_ORDER = ("fem_reference", "bem_griffith", "bem_energy")
 
 
 @dataclass(frozen=True)

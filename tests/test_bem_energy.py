@@ -125,23 +125,34 @@ def test_bad_settings_are_refused():
 
 # -- finite range: grid convergence at fixed rho ----------------------------------
 
-@pytest.fixture(scope="module")
-def finite_range_sweep():
+def _finite_range(Ns):
     sc = circle(range_=rho_for(0.16))
-    Ns = (8, 12, 16, 24)
-    return Ns, [be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=N), minimiser="pk")) for N in Ns]
+    return [be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=N))).pulloff_force for N in Ns]
 
 
-def test_finite_range_converges_under_refinement(finite_range_sweep):
-    """At fixed rho (l_c = 0.16 a, resolved from 8 elements per radius on), successive
-    differences of F_A shrink with a fitted rate of at least one in Delta."""
-    Ns, rs = finite_range_sweep
-    F = np.array([r.pulloff_force for r in rs])
-    h = 1.0 / np.array(Ns, float)
-    diffs = np.abs(np.diff(F))
-    rate = np.polyfit(np.log(h[1:]), np.log(diffs), 1)[0]
-    assert rate >= 1.0
-    assert diffs[-1] <= 0.01 * F[-1]
+#: first-order envelope of |F_N / F_ref - 1| measured at l_c = 0.16 a over 16 ... 128 per
+#: radius (benchmarks/study_energy.py: |err| x N = 0.05 ... 0.16, zig-zagging with the staircase)
+ENVELOPE = 0.16
+
+
+def test_finite_range_stays_within_first_order_envelope():
+    """At fixed rho (l_c = 0.16 a, resolved from 8 elements per radius on) F_A converges
+    under refinement; checked against 64 per radius with the envelope applied to both."""
+    Ns = (16, 24, 32, 48)
+    F = _finite_range(Ns + (64,))
+    for N, f in zip(Ns, F):
+        assert abs(f / F[-1] - 1) <= ENVELOPE / N + ENVELOPE / 64, N
+
+
+@pytest.mark.slow
+def test_finite_range_converges_first_order_slow():
+    Ns = np.array([12, 16, 24, 32, 48, 64, 96])
+    F = np.array(_finite_range(tuple(Ns) + (128,)))
+    err = np.abs(F[:-1] / F[-1] - 1)
+    # the upper envelope (running maximum from the fine end) falls at least like 1/N
+    env = np.maximum.accumulate(err[::-1])[::-1]
+    rate = -np.polyfit(np.log(Ns), np.log(env), 1)[0]
+    assert rate >= 0.9 and np.all(err * Ns <= ENVELOPE * 1.25)
 
 
 # -- zero range: Kendall by Richardson extrapolation ------------------------------
@@ -149,5 +160,38 @@ def test_finite_range_converges_under_refinement(finite_range_sweep):
 def test_richardson_recovers_a_known_limit():
     h = np.array([0.32, 0.16, 0.08])
     F = 2.0 - 0.7 * h**0.5
-    F0, p, est = be.richardson(h, F, None)
-    assert F0 == pytest.approx(2.0, rel=1e-9) and p == pytest.approx(0.5, rel=1e-6) and est < 1e-9
+    F0, free, est = be.richardson(h, F)
+    assert F0 == pytest.approx(2.0, rel=1e-12) and free == pytest.approx(0.5, rel=1e-6) and est < 1e-12
+    # a second term shows up in the estimate, not hidden
+    h4 = np.array([0.32, 0.16, 0.08, 0.04])
+    F0, _, est = be.richardson(h4, 2.0 - 0.7 * h4**0.5 + 0.3 * h4)
+    assert est >= 0.5 * abs(F0 - 2.0) > 0
+
+
+@pytest.fixture(scope="module")
+def zero_range_circle():
+    return be.solve(circle())     # no range: the zero-range limit, default settings
+
+
+def test_zero_range_circle_reaches_kendall_within_one_percent(zero_range_circle):
+    """Issue target 1 %; the sweep in benchmarks/study_energy.py measured +0.06 % with the
+    default ratios (and +1.35 % over 0.16 ... 0.02), the estimate covering both."""
+    r = zero_range_circle
+    FK = T.kendall_adhesion_force(E_star=1.0, radius=1.0, work=W)
+    err = abs(r.pulloff_force / FK - 1)
+    assert r.converged and err <= 0.01
+    assert r.accuracy_estimate >= err
+    zr = r.info["zero_range"]
+    # each finite range falls short of Kendall, more so the larger its process zone
+    assert all(f < FK for f in zr["pulloff_forces"]) and np.all(np.diff(zr["pulloff_forces"]) > 0)
+    assert any("Richardson" in m for m in r.messages)
+
+
+def test_zero_range_square_lies_within_the_bounds():
+    """Eqs. 13 and 18: between the incircle's Kendall force and the equal-area circle's."""
+    sq = cs.Square(2.0)
+    sc = cs.Scene(cs.Indenter(sq), cs.Homogeneous(1.0, 0.0), cs.Adhesion(W))
+    r = be.solve(sc, be.ZeroRangeSettings(ratios=(0.32, 0.16, 0.08), minimum_elements_per_radius=16))
+    lo = T.lower_bound_force(E_star=1.0, work=W, incircle_radius=1.0)
+    up = T.upper_bound_force(E_star=1.0, work=W, area=4.0)
+    assert lo < r.pulloff_force < up

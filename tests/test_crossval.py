@@ -14,19 +14,22 @@ from crossval.compare import Check
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def test_compare_circle_runs_both_methods_and_passes():
+def test_compare_circle_runs_all_three_methods_and_passes():
     sc = crossval.SUITE["incompressible_circle"]
     cmp = crossval.compare(sc, resolution=16)
-    assert set(cmp.results) == {"bem_griffith", "fem_reference"}
+    assert set(cmp.results) == {"bem_griffith", "bem_energy", "fem_reference"}
     assert cmp.passed, [c.explain() for c in cmp.checks if not c.passed]
-    assert any(c.method == "bem_griffith vs fem_reference" for c in cmp.checks)
+    for pair in ("bem_griffith vs fem_reference", "bem_griffith vs bem_energy", "bem_energy vs fem_reference"):
+        assert any(c.method == pair and c.quantity == "pulloff_force" for c in cmp.checks), pair
+    # the zero-range energy result ignores the grid resolution meant for the Griffith solver
+    assert "zero_range" in cmp.results["bem_energy"].info
 
 
 def test_compare_skips_fem_for_a_square_and_checks_bounds():
     cmp = crossval.compare(crossval.SUITE["square"], resolution=16)
-    assert list(cmp.results) == ["bem_griffith"] and "fem_reference" in cmp.skipped
-    (c,) = [c for c in cmp.checks if c.kind == "bounds"]
-    assert c.passed
+    assert list(cmp.results) == ["bem_griffith", "bem_energy"] and "fem_reference" in cmp.skipped
+    bounds = [c for c in cmp.checks if c.kind == "bounds"]
+    assert len(bounds) == 2 and all(c.passed for c in bounds), [c.explain() for c in bounds]
 
 
 def test_a_failing_check_explains_itself():
