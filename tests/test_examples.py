@@ -29,3 +29,13 @@ def test_fig10_elongated_faces_end_as_rounded_rectangles():
     for ar in (4, 8):                                               # elongated ones keep most of the face
         assert out[ar]["last_stable_fraction"] > 0.8 > 3 * out[ar]["incircle_fraction"]
     assert out[8]["last_stable_fraction"] > out[4]["last_stable_fraction"]
+
+
+def test_energy_example_extrapolates_toward_kendall():
+    from examples.energy_zero_range import run
+
+    out = run()
+    f = out["forces"]
+    assert all(x < 1 for x in f) and f == sorted(f)                  # finite ranges fall short, less as l_c shrinks
+    # three ratios 0.32 ... 0.08 on 16 per radius: within the result's own estimate of Kendall
+    assert abs(out["extrapolated"] - 1) <= max(out["result"].accuracy_estimate, 0.01)
