@@ -37,5 +37,6 @@ def test_energy_example_extrapolates_toward_kendall():
     out = run()
     f = out["forces"]
     assert all(x < 1 for x in f) and f == sorted(f)                  # finite ranges fall short, less as l_c shrinks
-    # three ratios 0.32 ... 0.08 on 16 per radius: within the result's own estimate of Kendall
-    assert abs(out["extrapolated"] - 1) <= max(out["result"].accuracy_estimate, 0.01)
+    # the extrapolations measured over different ratio sets and grids (README, energy BEM)
+    # landed between -1.0 % (these three ratios on 16 per radius) and +1.35 %
+    assert abs(out["extrapolated"] - 1) <= 0.015
