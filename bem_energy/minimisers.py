@@ -12,13 +12,23 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy import optimize
-from threadpoolctl import threadpool_limits
+from threadpoolctl import ThreadpoolController
 
 from .problem import EnergyProblem
 
 __all__ = ["Minimum", "minimise", "projected_gradient", "face_matrix"]
 
 log = logging.getLogger("bem_energy")
+
+_THREADPOOLS = None
+
+
+def _one_blas_thread():
+    # inspecting the loaded libraries costs about 1 ms; do it once, not per minimisation
+    global _THREADPOOLS
+    if _THREADPOOLS is None:
+        _THREADPOOLS = ThreadpoolController()
+    return _THREADPOOLS.limit(limits=1, user_api="blas")
 
 
 @dataclass(frozen=True, eq=False)
@@ -62,7 +72,7 @@ def minimise(prob: EnergyProblem, U0: np.ndarray, d: float, adhesive: bool, *, m
     # the vector work (L-BFGS-B's updates, the dot products here) goes through BLAS; threaded
     # BLAS on these vector sizes was measured 4x (L-BFGS-B) to 20x (dot products) slower on
     # this shared 2-core machine, so every minimisation runs with one BLAS thread
-    with threadpool_limits(limits=1, user_api="blas"):
+    with _one_blas_thread():
         if method == "lbfgsb":
             return _lbfgsb(prob, U0, d, adhesive, gtol, max_iterations, memory)
         if method == "pk":

@@ -219,6 +219,7 @@ def pull_off(scene: Scene, settings: EnergySettings, *, spacing: float | None = 
     last_stable = None
     detach_d = None
     fold = None
+    fold_index = -1
     max_steps = 20 * settings.steps + 100
     steps = 0
     for target in targets:
@@ -250,6 +251,7 @@ def pull_off(scene: Scene, settings: EnergySettings, *, spacing: float | None = 
                     else:
                         d_det, m_det = d_mid, m_mid
                 fold = _fold(fold_points)
+                fold_index = len(trace_d) - 1      # the last attached point on the curve
                 last_stable = snapshot(d_att, m_att)
                 detach_d = float(d_det)
                 d_next, m_new = d_det, m_det
@@ -277,10 +279,11 @@ def pull_off(scene: Scene, settings: EnergySettings, *, spacing: float | None = 
     pulloff = float(max(tensile[i], 0.0))
     pulloff_d = float(trace_d[i])
     peak = "step"
-    if fold is not None and -fold[1] >= pulloff and detach_d is not None and detach_d <= fold[0] <= pulloff_d:
-        # the snap-off is a fold of the attached branch, where F - F* ~ sqrt(d - d*): the
-        # bisection's last points locate it to the square root of its tolerance only, the
-        # vertex of the parabola d(F) through them to the tolerance itself
+    if (fold is not None and i == fold_index and -fold[1] >= pulloff and detach_d is not None
+            and detach_d <= fold[0] <= pulloff_d):
+        # the tension grows up to the snap-off, a fold of the attached branch where
+        # F - F* ~ sqrt(d - d*): the bisection's last points locate F* to the square root of
+        # its tolerance only, the vertex of the parabola d(F) through them to the tolerance
         pulloff_d, pulloff = float(fold[0]), float(-fold[1])
         peak = "fold"
     elif adhesive and best["before"] is not None and best["after"] is not None and best["after"][1]:
