@@ -1,6 +1,7 @@
 """FEM reference: error against degrees of freedom and wall time, per material case.
 
-    python benchmarks/study_fem.py
+    python benchmarks/study_fem.py             # convergence table
+    python benchmarks/study_fem.py --locking   # displacement-only elements lock, the mixed form does not
 
 For each case (homogeneous nu = 0.3 and 1/2, graded k = 0.25, 0.5, 0.75) and mesh grading
 g = 2, 1.5, 1 (element size / distance to the punch edge), prints the unknowns, the wall
@@ -41,5 +42,25 @@ def main(gradings=(2.0, 1.5, 1.0)):
             print(_timing.table(rows, ["case", "grading", "dofs", "wall s", "dK/K", "dF/F", "estimate"]), flush=True)
 
 
+def locking(nus=(0.3, 0.49, 0.499, 0.4999, 0.5)):
+    """Displacement-only P1 and P2 against the mixed Taylor-Hood form: K / (2 E* a) - 1."""
+    from fem_reference.locking import displacement_only_stiffness
+
+    rows = []
+    for nu in nus:
+        mixed = fr.solve(cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, nu), cs.Adhesion(1.0)),
+                         fr.FemSettings(grading=1.0))
+        K = T.kendall_stiffness(E_star=1.0 / (1 - nu**2), radius=1.0)
+        p1 = f"{displacement_only_stiffness(nu, grading=0.5) - 1:+.2e}" if nu < 0.5 else "n/a"
+        p2 = f"{displacement_only_stiffness(nu, order=2, grading=0.5) - 1:+.2e}" if nu < 0.5 else "n/a"
+        rows.append([nu, p1, p2, f"{mixed.stiffness / K - 1:+.2e}"])
+    print(_timing.table(rows, ["nu", "P1 displacement", "P2 displacement", "Taylor-Hood P4/P3"]))
+
+
 if __name__ == "__main__":
-    main()
+    import sys
+
+    if "--locking" in sys.argv:
+        locking()
+    else:
+        main()

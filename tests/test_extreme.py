@@ -103,3 +103,19 @@ def test_energy_method_extremes():
     from crossval.methods import METHODS
 
     assert "homogeneous" in METHODS["bem_energy"].applies(circle(cs.PowerLawGraded(1.0, 1.0, 0.5)))
+
+
+def test_displacement_only_elements_lock_where_the_mixed_form_does_not():
+    """The reason the reference is mixed: with lambda div u div v, linear elements stiffen by
+    hundreds of percent as nu -> 1/2, quadratic ones by tens (the mixed form: test above)."""
+    from fem_reference.locking import displacement_only_stiffness as K
+
+    nus = (0.3, 0.49, 0.499, 0.4999)
+    p1 = [K(nu, grading=0.5) - 1 for nu in nus]
+    assert p1[0] < 0.05                              # a compressible body: only mesh error
+    assert all(b > a for a, b in zip(p1, p1[1:]))    # worse as nu -> 1/2 ...
+    assert p1[-1] > 1.0                              # ... beyond +100 % at nu = 0.4999
+    p2 = K(0.4999, order=2, grading=0.5) - 1
+    assert p1[-1] > 10 * p2 > 0
+    with pytest.raises(cs.SceneError, match="poisson_ratio"):
+        K(0.5)

@@ -70,3 +70,18 @@ def test_fields_only_when_asked(tmp_path):
     face = (m.points[:, 1] == 0) & (m.points[:, 0] <= 1.0)
     # the face moves rigidly with the punch at pull-off
     assert np.allclose(m.point_data["u_z"][face], r.pulloff_approach, rtol=1e-10)
+
+
+def test_stiffness_converges_at_the_rate_of_the_element_order():
+    """Taylor-Hood P2/P1 on meshes graded toward the edge singularity: the stiffness is an
+    energy, its error the square of the energy-norm error, so it falls like h^(2p) =
+    dofs^-p = dofs^-2 (benchmarks/study_fem.py: 2.0 between 7.5e3, 2.7e4 and 1.0e5 unknowns)."""
+    import numpy as np
+
+    dofs, errs = [], []
+    for g in (1.0, 0.7, 0.5):
+        u = fr.unit_solution(Material(0.0, 0.3), fr.FemSettings(grading=g, order=2))
+        dofs.append(u.dofs)
+        errs.append(abs(u.stiffness / (2 / (1 - 0.09)) - 1))
+    rate = -np.polyfit(np.log(dofs), np.log(errs), 1)[0]
+    assert 1.8 <= rate <= 2.6, (dofs, errs, rate)
