@@ -119,3 +119,12 @@ def test_displacement_only_elements_lock_where_the_mixed_form_does_not():
     assert p1[-1] > 10 * p2 > 0
     with pytest.raises(cs.SceneError, match="poisson_ratio"):
         K(0.5)
+
+
+def test_fem_near_k_one_is_finite_and_its_estimate_covers_the_error():
+    # k = 0.95 maps depth by zeta^20; a round-off duplicate of the bottom row once made a
+    # layer of zero-area elements and a failed factorisation
+    k = 0.95
+    r = fr.solve(circle(cs.PowerLawGraded(1.0, 1.0, k)), fr.FemSettings(grading=2.0))
+    err = abs(r.stiffness / T.graded_stiffness(E0=1.0, c0=1.0, k=k, radius=1.0) - 1)
+    assert r.converged and math.isfinite(r.pulloff_force) and err <= r.accuracy_estimate
