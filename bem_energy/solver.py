@@ -198,7 +198,10 @@ def pull_off(scene: Scene, settings: EnergySettings, *, spacing: float | None = 
     record(d0, m)
 
     rho = potential.range if adhesive else 0.0
-    span = abs(d0) + 2.0 * d_scale + 5.0 * rho + prob.spacing
+    # the length scale of the pull: the critical approach and the range with adhesion (a grid
+    # spacing would swamp both when w is tiny), the element without
+    pull_scale = d_scale + rho if adhesive else prob.spacing
+    span = abs(d0) + 2.0 * d_scale + 5.0 * rho + (0.0 if adhesive else prob.spacing)
     step = span / settings.steps
     user_limit = scene.loading.pull_limit is not None
     final = scene.loading.pull_limit if user_limit else -math.inf
@@ -240,7 +243,7 @@ def pull_off(scene: Scene, settings: EnergySettings, *, spacing: float | None = 
                 d_att, m_att, d_det, m_det = d, m, d_next, m_new
                 fold_points = [(trace_d[-2], trace_F[-2])] if len(trace_d) > 1 else []
                 fold_points.append((d, prob.force(m.P)))
-                tol = settings.snap_tolerance * max(d_scale, prob.spacing)
+                tol = settings.snap_tolerance * pull_scale
                 while d_att - d_det > tol:
                     d_mid = 0.5 * (d_att + d_det)
                     m_mid = _minimise(prob, m_att.U, d_mid, adhesive, settings, stats)
@@ -264,10 +267,11 @@ def pull_off(scene: Scene, settings: EnergySettings, *, spacing: float | None = 
             d, m, attached = d_next, m_new, now
             record(d, m, attached)
             steps += 1
-            if not attached and target == final and not user_limit:
+            if not attached and target == final:
                 break
             if steps > max_steps:
-                msgs.append(f"stopped after {steps} steps still attached at d = {d:.6g}")
+                msgs.append(f"stopped after {steps} steps at d = {d:.6g}, "
+                            f"{'still attached' if attached else 'detached'}")
                 break
         if steps > max_steps or (not attached and target == final):
             break
@@ -297,7 +301,7 @@ def pull_off(scene: Scene, settings: EnergySettings, *, spacing: float | None = 
             extra.append((float(x), F_x, float(_contact(prob, mm, x).sum()) * cell))
             return F_x
 
-        tol = settings.snap_tolerance * max(d_scale, prob.spacing)
+        tol = settings.snap_tolerance * pull_scale
         r = optimize.minimize_scalar(force_at, bounds=(lo_d, hi_d), method="bounded", options={"xatol": tol})
         if -r.fun > pulloff:
             pulloff, pulloff_d = float(-r.fun), float(r.x)

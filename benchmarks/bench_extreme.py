@@ -61,7 +61,7 @@ def main():
         rows.append(_row(f"rectangle {ar}:1", "bem_griffith", r, None, time.perf_counter() - t))
         if ar <= 20:
             t = time.perf_counter()
-            r = be.solve(cs.Scene(cs.Indenter(cs.Rectangle(float(ar), 1.0)), E, cs.Adhesion(1.0, (0.16 * 0.5) ** 0.5)),
+            r = be.solve(cs.Scene(cs.Indenter(cs.Rectangle(float(ar), 1.0)), E, cs.Adhesion(1.0, 0.16 ** 0.5)),
                          be.EnergySettings(grid=cs.Grid(spacing=1 / 8)))
             rows.append(_row(f"rectangle {ar}:1, l_c = 0.16 b", "bem_energy", r, None, time.perf_counter() - t))
     print(_timing.table(rows, ["case", "method", "converged", "stiffness err", "CG its", "wall s", "note"]))

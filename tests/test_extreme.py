@@ -99,6 +99,12 @@ def test_energy_method_extremes():
     held = cs.Scene(base.indenter, base.material, cs.Adhesion(0.02, rho), cs.Loading(pull_limit=-0.05))
     r = be.solve(held, st)
     assert not r.detached and any("still attached" in m for m in r.messages)
+    # w = 1e-12 with its range scaled alike (same l_c): F_A scales exactly with sqrt(w), and a
+    # far pull limit after the snap does not keep the solver stepping
+    tiny = cs.Scene(base.indenter, base.material, cs.Adhesion(0.02e-12, rho * 1e-6), cs.Loading(pull_limit=-10.0))
+    r = be.solve(tiny, st)
+    assert r.detached and r.converged
+    assert r.pulloff_force / 1e-6 == pytest.approx(r1.pulloff_force, rel=1e-9)
     # a graded body is outside the energy method's validated scope, said so by the registry
     from crossval.methods import METHODS
 
