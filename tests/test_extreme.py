@@ -134,3 +134,15 @@ def test_fem_near_k_one_is_finite_and_its_estimate_covers_the_error():
     r = fr.solve(circle(cs.PowerLawGraded(1.0, 1.0, k)), fr.FemSettings(grading=2.0))
     err = abs(r.stiffness / T.graded_stiffness(E0=1.0, c0=1.0, k=k, radius=1.0) - 1)
     assert r.converged and math.isfinite(r.pulloff_force) and err <= r.accuracy_estimate
+
+
+def test_float32_preconditioner_does_not_change_the_answer():
+    """The Griffith solver's float32 path (its Fourier preconditioner runs single-precision
+    FFTs) against plain float64 CG: the same result to the CG tolerance (rtol 1e-10)."""
+    sc = circle(cs.Homogeneous(0.75, 0.5))
+    r32 = bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=16), preconditioner="fourier"))
+    r64 = bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=16), preconditioner="none"))
+    assert r32.pulloff_force == pytest.approx(r64.pulloff_force, rel=1e-8)
+    assert r32.pulloff_approach == pytest.approx(r64.pulloff_approach, rel=1e-8)
+    assert r32.info["events"] == r64.info["events"]
+    assert r32.info["matvecs"] < r64.info["matvecs"]

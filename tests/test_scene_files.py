@@ -163,3 +163,28 @@ def test_cli_solve_refuses_bad_resolution_and_unknown_method():
     assert r.returncode == 2 and "too coarse" in r.stderr and "Traceback" not in r.stderr
     r = _cli("solve", str(ROOT / "scenes" / "kendall_circle.toml"), "--method", "magic")
     assert r.returncode == 2 and "Traceback" not in r.stderr
+
+
+# whole scene files, corrupted byte-wise: a SceneError (exit status 2 in the CLI) or a valid
+# scene, never another exception
+_KENDALL = (ROOT / "scenes" / "kendall_circle.toml").read_bytes()
+
+
+@settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow,
+                                                                    HealthCheck.function_scoped_fixture])
+@given(st.integers(0, len(_KENDALL)), st.integers(0, 40), st.binary(max_size=12))
+def test_fuzzed_scene_files_give_scene_errors(tmp_path, start, cut, insert):
+    data = _KENDALL[:start] + insert + _KENDALL[start + cut:]
+    path = tmp_path / "fuzzed.toml"
+    path.write_bytes(data)
+    try:
+        cs.load_scene(path)
+    except cs.SceneError as exc:
+        assert exc.field
+
+
+def test_cli_garbage_file_exits_2(tmp_path):
+    p = tmp_path / "garbage.toml"
+    p.write_bytes(b"\xff\xfe[indenter\x00 = = \n")
+    r = _cli("scene", "check", str(p))
+    assert r.returncode == 2 and "Traceback" not in r.stderr and r.stderr.startswith("error:")
