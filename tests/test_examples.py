@@ -40,3 +40,15 @@ def test_energy_example_extrapolates_toward_kendall():
     # the extrapolations measured over different ratio sets and grids (README, energy BEM)
     # landed between -1.0 % (these three ratios on 16 per radius) and +1.35 %
     assert abs(out["extrapolated"] - 1) <= 0.015
+
+
+def test_fig07_faults_scale_with_sqrt_filling_factor():
+    """Eq. 24: F ~ sqrt(phi).  Measured F / (F_plain sqrt(phi)) = 0.98-1.02 at 40 cells per
+    side and 0.95-0.99 at 64 (the 7-cut face, cuts 3 cells wide, is the outlier): 6 %."""
+    from examples.fig07_faults import run
+
+    out = run(cells_per_side=40)
+    for name, o in out.items():
+        assert o["F_over_upper"] < 1.0, name                        # Eq. 24 is an upper bound
+        assert abs(o["F_over_plain"] / o["sqrt_phi"] - 1) <= 0.06, name
+        assert o["result"].converged and o["result"].detached
