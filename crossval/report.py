@@ -60,8 +60,11 @@ def _png(fig, path: Path) -> str:
 
 
 def report(out_dir="report", *, quick: bool = True, workers: int = 1, scheduler=None, cache_dir=".crossval-cache",
-           scenes=None, callback=None) -> Report:
-    """Run the suite, check every method, write the report; returns what it found."""
+           scenes=None, callback=None, extremes: bool | None = None) -> Report:
+    """Run the suite, check every method, write the report; returns what it found.
+
+    ``extremes`` (default: the full report only) adds the stiff and extreme cases table of
+    :mod:`crossval.extremes` (about a minute on 2 cores)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -148,6 +151,16 @@ def report(out_dir="report", *, quick: bool = True, workers: int = 1, scheduler=
                         "tolerance": c.tolerance, "passed": c.passed} for c in checks[s]],
             "rates": st.rates,
         }
+    extreme_html = ""
+    if extremes if extremes is not None else not quick:
+        from . import extremes as ex
+
+        rows = ex.extreme_cases()
+        data["extremes"] = [dict(zip(ex.HEADERS, r)) for r in rows]
+        head = "".join(f"<th>{html.escape(h)}</th>" for h in ex.HEADERS)
+        body = "".join("<tr>" + "".join(f"<td>{html.escape(str(v))}</td>" for v in r) + "</tr>" for r in rows)
+        extreme_html = (f"<h2 id='extremes'>Stiff and extreme cases</h2><p>Stiffness error against Eq. 1 / Eq. 34 "
+                        f"(n/a where there is no closed form).</p><table><tr>{head}</tr>{body}</table>")
     passed = all(c.passed for cs_ in checks.values() for c in cs_)
     data["passed"] = passed
     wall = time.perf_counter() - t0
@@ -158,7 +171,8 @@ def report(out_dir="report", *, quick: bool = True, workers: int = 1, scheduler=
         "td,th{border:1px solid #ccc;padding:2px 6px;font-size:13px}.fail{color:#b00}.ok{color:#060}</style>"
         f"<h1>Method comparison ({'quick' if quick else 'full'} suite)</h1>"
         f"<p>package {package_version()}; {len(names)} scenes; {'all checks passed' if passed else 'SOME CHECKS FAILED'}; "
-        f"{wall:.0f} s.</p><h2>Agreement</h2><img src='data:image/png;base64,{agreement_png}'>" + "".join(sections))
+        f"{wall:.0f} s.</p><h2>Agreement</h2><img src='data:image/png;base64,{agreement_png}'>" + "".join(sections)
+        + extreme_html)
     _write_atomic(out / "index.html", page.encode())
     _write_atomic(out / "results.json", json.dumps(data, indent=1, default=float).encode())
     return Report(out, studies, checks, passed, wall)

@@ -81,3 +81,15 @@ def test_regress_passes_and_explains_a_change(tmp_path):
     p.write_text(json.dumps(data))
     (bad,) = regress(path=p)
     assert bad.quantity == "pulloff_force" and "-9.99e-04" in bad.explain()
+
+
+def test_full_report_includes_the_extreme_cases_table(tmp_path, monkeypatch):
+    import crossval.extremes as ex
+
+    row = ("nu = 0.5", "fem_reference", True, "+2.58e-05", 0, "1.90", "")
+    monkeypatch.setattr(ex, "extreme_cases", lambda callback=None: [row])
+    crossval.report(tmp_path / "r", quick=True, cache_dir=None, scenes=["kendall_circle"], extremes=True)
+    page = (tmp_path / "r" / "index.html").read_text()
+    assert "Stiff and extreme cases" in page and "+2.58e-05" in page
+    data = json.loads((tmp_path / "r" / "results.json").read_text())
+    assert data["extremes"] == [dict(zip(ex.HEADERS, row))]
