@@ -195,3 +195,22 @@ def test_zero_range_square_lies_within_the_bounds():
     lo = T.lower_bound_force(E_star=1.0, work=W, incircle_radius=1.0)
     up = T.upper_bound_force(E_star=1.0, work=W, area=4.0)
     assert lo < r.pulloff_force < up
+
+
+def test_continuation_is_needed_cold_start_falls_onto_the_detached_branch():
+    rho = rho_for(0.16)
+    sc = circle(range_=rho)
+    st = be.EnergySettings(grid=cs.Grid(elements_per_radius=12))
+    r = be.solve(sc, st)
+    d = r.pulloff_approach                            # attached in the pull, gap 5 rho from cold
+    prob = be.build_problem(sc, 1 / 12, be.Potential(W, rho))
+    cold = be.minimise(prob, np.zeros(prob.padded), d, True)
+    warm = be.minimise(prob, np.zeros(prob.padded), 0.0, True)     # touching, then a short continuation
+    for x in np.linspace(0.0, d, 9)[1:]:
+        warm = be.minimise(prob, warm.U, x, True)
+    assert cold.converged and warm.converged
+    assert prob.gap(cold.U, d).min() > rho and abs(prob.force(cold.P)) < 0.05 * r.pulloff_force
+    assert prob.gap(warm.U, d).min() == 0.0 and prob.force(warm.P) < -0.3 * r.pulloff_force
+    # near pull-off the attached state is metastable (higher energy than the detached one, the
+    # Kendall hysteresis): only continuation along the branch finds it
+    assert warm.energy > cold.energy
