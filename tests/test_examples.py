@@ -52,3 +52,16 @@ def test_fig07_faults_scale_with_sqrt_filling_factor():
         assert o["F_over_upper"] < 1.0, name                        # Eq. 24 is an upper bound
         assert abs(o["F_over_plain"] / o["sqrt_phi"] - 1) <= 0.06, name
         assert o["result"].converged and o["result"].detached
+
+
+def test_fig16_graded_star_positive_k_peaks_early_negative_k_is_brittle():
+    """Measured at 12, 16, 24 per radius: F_last / F_max = 0.73-0.79 (k = 0.5) against
+    0.96-1.0 (k = -0.5); last stable area 0.59-0.64 against 0.67-0.76 of the face (incircle 0.48)."""
+    from examples.fig16_graded_star import run
+
+    out = run(resolution=16)
+    pos, neg = out[0.5], out[-0.5]
+    assert pos["last_force_over_max"] < 0.85 < 0.9 < neg["last_force_over_max"]
+    assert neg["last_stable_area"] > pos["last_stable_area"] > pos["incircle_area"]
+    for o in out.values():
+        assert o["result"].converged and o["result"].detached
