@@ -158,6 +158,9 @@ def pull_off(scene: Scene, settings: EnergySettings, *, spacing: float | None = 
              potential: Potential | None = None, callback=None, max_memory_gb: float = 8.0) -> Result:
     """One finite-range pull-off (``potential`` defaults to the scene's adhesion)."""
     t0 = time.perf_counter()
+    if settings.grid.periodic:
+        raise SceneError("grid.periodic", "the energy method models the infinite (non-periodic) half-space only; "
+                         "use periodic = false")
     potential = potential if potential is not None else default_potential(scene)
     h = spacing if spacing is not None else settings.grid.spacing_for(scene.indenter.shape)
     prob = build_problem(scene, h, potential, memory=settings.memory, max_memory_gb=max_memory_gb)

@@ -68,6 +68,9 @@ def _estimate_memory_gb(nx: int, ny: int) -> float:
 
 
 def build_problem(scene: Scene, settings: Settings) -> Problem:
+    if settings.grid.periodic:
+        raise SceneError("grid.periodic", "the periodic half-space is not implemented yet; only the infinite "
+                         "(zero-padded, non-periodic) half-space: use periodic = false")
     mat = scene.material
     shape = scene.indenter.shape
     h = settings.grid.spacing_for(shape)

@@ -14,8 +14,9 @@ class Grid:
     """A square boundary-element grid.
 
     ``elements_per_radius`` N sets the spacing Delta = sqrt(A/pi) / N (A the nominal face
-    area); ``spacing`` sets Delta directly and wins when both are given.  ``periodic`` makes
-    the half-space periodic over the (padded) grid instead of infinite.
+    area); ``spacing`` sets Delta directly and wins when both are given.  ``periodic`` asks for
+    a half-space periodic over the grid instead of infinite: no solver implements it yet, and
+    each refuses it with a SceneError rather than ignoring it.
     """
 
     elements_per_radius: float | None = 32.0

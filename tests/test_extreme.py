@@ -146,3 +146,14 @@ def test_float32_preconditioner_does_not_change_the_answer():
     assert r32.pulloff_approach == pytest.approx(r64.pulloff_approach, rel=1e-8)
     assert r32.info["events"] == r64.info["events"]
     assert r32.info["matvecs"] < r64.info["matvecs"]
+
+
+def test_periodic_grid_is_refused_not_ignored():
+    import bem_energy as be
+
+    sc = circle(cs.Homogeneous(0.75, 0.5))
+    grid = cs.Grid(elements_per_radius=8, periodic=True)
+    with pytest.raises(cs.SceneError, match="grid.periodic"):
+        bg.solve(sc, bg.Settings(grid=grid))
+    with pytest.raises(cs.SceneError, match="grid.periodic"):
+        be.solve(cs.Scene(sc.indenter, sc.material, cs.Adhesion(1.0, 0.3)), be.EnergySettings(grid=grid))
