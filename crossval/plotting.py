@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["plot_curve", "plot_contact"]
+__all__ = ["plot_curve", "plot_contact", "plot_surface", "plot_error_vs_time", "plot_agreement"]
 
 
 def _axes(ax):
@@ -39,6 +39,32 @@ def plot_contact(snapshot, ax=None, *, face=None):
     ax.imshow(img.T, origin="lower", cmap="Greys", vmin=0, vmax=1,
               extent=(x0 - h / 2, x0 + (nx - 0.5) * h, y0 - h / 2, y0 + (ny - 0.5) * h))
     ax.set_aspect("equal")
+    ax.set_title(f"d = {snapshot.approach:.4g}")
+    return ax
+
+
+def plot_surface(snapshot, ax=None, *, stride: int = 1):
+    """A 3-D view of the surface under a partially detached punch: the displacement -u
+    (up = toward the punch) of a snapshot taken with fields (``Outputs(fields=True)``), contact
+    cells dark.  ``ax`` must be a 3-D axes (``projection="3d"``) when given."""
+    if snapshot.displacement is None:
+        raise ValueError("the snapshot has no displacement field; ask for it with Outputs(fields=True)")
+    if ax is None:
+        import matplotlib.pyplot as plt
+
+        ax = plt.figure().add_subplot(projection="3d")
+    u = snapshot.displacement[::stride, ::stride]
+    nx, ny = u.shape
+    h = snapshot.spacing * stride
+    x0, y0 = snapshot.origin
+    X, Y = np.meshgrid(x0 + h * np.arange(nx), y0 + h * np.arange(ny), indexing="ij")
+    colours = np.where(snapshot.contact[::stride, ::stride], 0.15, 0.75)
+    from matplotlib import cm
+
+    ax.plot_surface(X, Y, -u, facecolors=cm.Greys_r(colours), linewidth=0, antialiased=False, shade=True)
+    ax.set_xlabel("x")
+    ax.set_ylabel("y")
+    ax.set_zlabel("-u (toward the punch)")
     ax.set_title(f"d = {snapshot.approach:.4g}")
     return ax
 

@@ -65,3 +65,25 @@ def test_fig16_graded_star_positive_k_peaks_early_negative_k_is_brittle():
     assert neg["last_stable_area"] > pos["last_stable_area"] > pos["incircle_area"]
     for o in out.values():
         assert o["result"].converged and o["result"].detached
+
+
+def test_fig05_star_detaches_from_the_tips_to_near_the_incircle():
+    """Measured at 12-32 per radius: the first cells lost lie at r = 0.96-0.99 (tips at 1);
+    the last stable state at d/d_lower = 1.05-1.08, F/F_lower = 1.17-1.35 (Eqs. 18-19)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from crossval.plotting import plot_surface
+    from examples.fig05_star import run
+
+    out = run(resolution=16, fields=True)
+    assert out["first_lost_radius"] > 0.9 * out["tip_radius"]
+    d, F = out["last_stable_normalised"]
+    assert 1.0 <= d <= 1.1 and 1.0 <= F <= 1.4
+    ax = plot_surface(out["mid"])
+    assert ax.name == "3d"
+    no_fields = out["result"].last_stable
+    import pytest
+
+    with pytest.raises(ValueError, match="fields"):
+        plot_surface(no_fields)
