@@ -14,7 +14,7 @@ import numpy as np
 from contact_scene import SceneError
 from contact_scene.errors import check_choice, check_real
 
-__all__ = ["Potential", "process_zone_length"]
+__all__ = ["Potential", "process_zone_length", "process_zone_modulus"]
 
 
 @dataclass(frozen=True)
@@ -52,11 +52,6 @@ class Potential:
             return -(w / r**2) * np.exp(-g / r)
         return np.zeros_like(np.asarray(g, float))
 
-    def linearised(self, g0: np.ndarray):
-        """The tangent of phi at g0 (an upper bound, phi being concave): the convex
-        sub-problem of the convex-concave procedure minimises with it."""
-        return self.energy(g0), self.stress(g0)
-
 
 def process_zone_length(*, modulus: float, work: float, range: float) -> float:
     """l_c = E* rho^2 / w (infinite without adhesion)."""
@@ -65,3 +60,10 @@ def process_zone_length(*, modulus: float, work: float, range: float) -> float:
     if range <= 0:
         raise SceneError("adhesion.range", f"must be > 0 (got {range:g})")
     return modulus * range**2 / work
+
+
+def process_zone_modulus(material) -> float:
+    """The modulus in l_c: E* of a homogeneous body, the surface modulus E0 of a graded one."""
+    from contact_scene import Homogeneous
+
+    return material.effective_modulus if isinstance(material, Homogeneous) else material.surface_modulus

@@ -21,7 +21,7 @@ import scipy.fft as sfft
 from bem_griffith.kernel import graded_influence, love_influence
 from contact_scene import Homogeneous, PowerLawGraded, Scene, SceneError, rasterise
 
-from .potentials import Potential, process_zone_length
+from .potentials import Potential, process_zone_length, process_zone_modulus
 
 __all__ = ["EnergyProblem", "build_problem", "estimate_memory_gb"]
 
@@ -102,11 +102,10 @@ def build_problem(scene: Scene, spacing: float, potential: Potential | None, *, 
     n = max(nx, ny)
     M = (2 * n, 2 * n)
     mat = scene.material
+    modulus = process_zone_modulus(mat)
     if isinstance(mat, Homogeneous):
-        modulus = mat.effective_modulus
         K = love_influence(n, n, spacing, modulus, M)
     elif isinstance(mat, PowerLawGraded):
-        modulus = mat.surface_modulus
         K = graded_influence(n, n, spacing, mat.surface_modulus, mat.reference_depth, mat.exponent, M)
     else:  # pragma: no cover - Scene validates the material
         raise SceneError("material", f"unsupported material {type(mat).__name__}")

@@ -16,7 +16,7 @@ import numpy as np
 
 from contact_scene import Grid, Result, Scene
 
-from .potentials import Potential
+from .potentials import Potential, process_zone_modulus
 from .settings import ZeroRangeSettings
 from .solver import pull_off
 
@@ -81,7 +81,7 @@ def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callb
     t0 = time.perf_counter()
     w = scene.adhesion.work_of_adhesion
     a = scene.indenter.shape.equivalent_radius
-    E = _modulus(scene)
+    E = process_zone_modulus(scene.material)
     runs = []
     for r in settings.ratios:
         lc = r * a
@@ -134,10 +134,3 @@ def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callb
             "pulloff_forces": Fs.tolist(), "pulloff_approaches": ds.tolist(),
             "rate": settings.rate, "free_rate": free_rate}},
     )
-
-
-def _modulus(scene: Scene) -> float:
-    from contact_scene import Homogeneous
-
-    mat = scene.material
-    return mat.effective_modulus if isinstance(mat, Homogeneous) else mat.surface_modulus
