@@ -135,7 +135,10 @@ def saddle_matrix(mesh: MeshTri, mat: Material, *, order: int = 2, intorder: int
                   elements: np.ndarray | None = None) -> tuple[sp.csr_matrix, Basis, Basis]:
     """[[A, B^T], [B, -C]] over all elements, or only over ``elements`` (same global size)."""
     eu, ep = _ORDERS[order]
-    intorder = intorder if intorder is not None else 2 * order + 2
+    # 2p: exact for the polynomial part of the integrands (degree 2(p-1) + 1 with the weight r);
+    # 2p + 2 changed K by < 1e-6 relative on the study cases but scikit-fem's degree-10 rule
+    # made the degree-4 assembly 6.5x slower (3.7 s against 0.57 s at 1,600 elements)
+    intorder = intorder if intorder is not None else 2 * order
     kw = {} if elements is None else {"elements": elements}
     ub = Basis(mesh, ElementVector(eu()), intorder=intorder, **kw)
     pb = Basis(mesh, ep(), intorder=intorder, **kw)
