@@ -17,10 +17,10 @@ class EnergySettings:
         Element size, as for the Griffith solver.  The element should not exceed the
         process zone l_c = E* rho^2 / w; a coarser grid is run but reported in the messages.
     minimiser
-        ``"lbfgsb"`` (default): scipy's bound-constrained L-BFGS-B on the surface
-        displacement of the zero-padded grid (bounds = the hard wall on the face).
-        ``"pk"``: a projected, Fourier-preconditioned conjugate-gradient iteration in the style
-        of Polonsky-Keer and Rey et al. ``"cvxpy"``: the convex QP (no adhesion) or the
+        ``"pk"`` (default): a projected, Fourier-preconditioned conjugate-gradient iteration
+        in the style of Polonsky-Keer and Rey et al.  ``"lbfgsb"``: scipy's bound-constrained
+        L-BFGS-B on the surface displacement of the zero-padded grid (bounds = the hard wall on
+        the face); the same answer about 20x slower (benchmarks/bench_energy.py).  ``"cvxpy"``: the convex QP (no adhesion) or the
         convex-concave procedure with dense face matrices, for small grids only.
     steps
         Continuation steps over the default pull range; the snap-off is then located by

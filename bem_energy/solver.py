@@ -90,10 +90,10 @@ def _contact(prob: EnergyProblem, m: Minimum, d: float) -> np.ndarray:
 
 
 def _attached(prob: EnergyProblem, m: Minimum, d: float, adhesive: bool) -> bool:
-    g = prob.gap(m.U, d)
+    """Some face cell within the range of the potential, or (without adhesion) at the wall."""
     if adhesive and prob.potential is not None:
-        return bool(g.min() < prob.potential.range)
-    return bool(g.min() <= 1e-9 * max(abs(d), prob.spacing))
+        return bool(prob.gap(m.U, d).min() < prob.potential.range)
+    return bool(_contact(prob, m, d).any())
 
 
 def _press(prob: EnergyProblem, scene: Scene, settings: EnergySettings, stats: _Stats, d_scale: float):
@@ -105,7 +105,7 @@ def _press(prob: EnergyProblem, scene: Scene, settings: EnergySettings, stats: _
 
         def excess(d):
             m = _minimise(prob, state["U"], d, False, settings, stats)
-            state["U"], state["m"] = m.U, m
+            state["U"] = m.U
             return prob.force(m.P) - target
 
         hmin = float(prob.height.min())
