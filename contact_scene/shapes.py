@@ -12,7 +12,7 @@ Units are whatever the scene uses (SI recommended); nothing here assumes a scale
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
 from typing import NamedTuple
 
@@ -766,6 +766,8 @@ def _interior(shape: Shape, x, y):
 class TwoCircles(Union):
     """Two circles of radii r1, r2 whose centres are ``distance`` apart (Fig. 15); exact lens area."""
 
+    # built from the radii, not passed: TwoCircles(r1, r2, distance) must not bind r1 to ``parts``
+    parts: tuple = field(default=(), init=False, repr=False)
     radius1: float = 1.0
     radius2: float = 1.0
     distance: float = 2.0
@@ -805,6 +807,8 @@ class SquareWithFaults(Difference):
     of the top edge, and ``line_cuts`` straight cuts of width ``cut_width`` running from the
     left edge inward by ``line_cut_length`` at evenly spaced heights."""
 
+    base: Shape = field(default=None, init=False, repr=False)
+    cuts: tuple = field(default=(), init=False, repr=False)
     side: float = 1.0
     v_cut_depth: float = 0.0
     v_cut_width: float = 0.0
@@ -844,6 +848,7 @@ class Brush(Union):
     The nominal area is the square's, so ``filling_factor`` is the phi of Eq. 24.
     """
 
+    parts: tuple = field(default=(), init=False, repr=False)
     side: float = 1.0
     pillar_radius: float = 0.05
     layout: str = "regular"

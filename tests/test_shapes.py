@@ -1,4 +1,5 @@
 """Face shapes: exact geometry, rasterisation rule, invariances."""
+import dataclasses
 import math
 
 import numpy as np
@@ -149,3 +150,15 @@ def test_convex_polygon_incircle_bound(points):
     assert p.area == pytest.approx(hull.volume, rel=1e-9)
     assert r <= 2 * p.area / hull.area * (1 + 1e-9)            # r <= 2A/P for every convex polygon
     assert -p.signed_distance(*c) == pytest.approx(r, rel=1e-6)
+
+
+def test_composite_faces_take_their_own_parameters_positionally():
+    """The parts of a derived union/difference are built, not passed: a positional call binds
+    the first argument to the first physical parameter (it used to bind it to ``parts`` and
+    leave the last parameter at its default, silently building another face)."""
+    tc = cs.TwoCircles(10.0, 6.0, 13.0)
+    assert (tc.radius1, tc.radius2, tc.distance) == (10.0, 6.0, 13.0)
+    assert tc.bounds == (-16.5, -10.0, 12.5, 10.0)
+    assert cs.Brush(2.0, 0.05).side == 2.0
+    assert cs.SquareWithFaults(2.0).area == 4.0
+    assert dataclasses.replace(tc, radius2=5.0).bounds[2] == 11.5
