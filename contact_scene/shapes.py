@@ -844,8 +844,11 @@ class Brush(Union):
     """Circular pillars of radius ``pillar_radius`` inside a square of side ``side`` (Fig. 8).
 
     ``layout = "regular"`` puts them on a square lattice of pitch ``pitch``; ``"random"``
-    places ``count`` non-overlapping pillars uniformly at random (reproducible by ``seed``).
-    The nominal area is the square's, so ``filling_factor`` is the phi of Eq. 24.
+    places ``count`` non-overlapping pillars uniformly at random (reproducible by ``seed``);
+    ``"mixed"`` places ``count`` columns at random too, alternately circular and square, each
+    sized uniformly between half and all of ``pillar_radius`` (a square column of "radius" r
+    has side r sqrt(pi), the area of the disc), as in the paper's mixed brushes (Fig. 8a).
+    The nominal area is the square's, so area / nominal_area is the phi of Eq. 24.
     """
 
     parts: tuple = field(default=(), init=False, repr=False)
@@ -865,22 +868,27 @@ class Brush(Union):
             m = int(math.floor((L - 2 * rp) / p + 1e-9)) + 1
             off = -(m - 1) * p / 2
             centres = [(off + i * p, off + j * p) for i in range(m) for j in range(m)]
-        elif self.layout == "random":
+            parts = tuple(Circle(rp, c) for c in centres)
+        elif self.layout in ("random", "mixed"):
             cnt = check_int("indenter.count", self.count, lo=1, hi=100_000)
             rng = np.random.default_rng(check_int("indenter.seed", self.seed, lo=0))
-            centres = []
+            mixed = self.layout == "mixed"
+            placed = []                                     # (x, y, half-width of the bounding box)
             for _ in range(200 * cnt):
-                if len(centres) == cnt:
+                if len(placed) == cnt:
                     break
+                r = rng.uniform(0.5 * rp, rp) if mixed else rp
                 c = rng.uniform(-L / 2 + rp, L / 2 - rp, 2)
                 # a small gap keeps the pillars' bounding boxes apart, so the area stays exact
-                if all(max(abs(c[0] - q[0]), abs(c[1] - q[1])) > 2 * rp * 1.000001 for q in centres):
-                    centres.append((float(c[0]), float(c[1])))
-            if len(centres) < cnt:
-                raise SceneError("indenter.count", f"could place only {len(centres)} of {cnt} non-overlapping pillars; lower count or pillar_radius")
+                if all(max(abs(c[0] - q[0]), abs(c[1] - q[1])) > (r + q[2]) * 1.000001 for q in placed):
+                    placed.append((float(c[0]), float(c[1]), r))
+            if len(placed) < cnt:
+                raise SceneError("indenter.count", f"could place only {len(placed)} of {cnt} non-overlapping pillars; lower count or pillar_radius")
+            parts = tuple(Square(r * math.sqrt(math.pi), center=(x, y)) if mixed and i % 2 else Circle(r, (x, y))
+                          for i, (x, y, r) in enumerate(placed))
         else:
-            raise SceneError("indenter.layout", f"must be 'regular' or 'random' (got {self.layout!r})")
-        object.__setattr__(self, "parts", tuple(Circle(rp, c) for c in centres))
+            raise SceneError("indenter.layout", f"must be 'regular', 'random' or 'mixed' (got {self.layout!r})")
+        object.__setattr__(self, "parts", parts)
 
     @property
     def nominal_area(self):

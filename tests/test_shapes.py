@@ -162,3 +162,17 @@ def test_composite_faces_take_their_own_parameters_positionally():
     assert cs.Brush(2.0, 0.05).side == 2.0
     assert cs.SquareWithFaults(2.0).area == 4.0
     assert dataclasses.replace(tc, radius2=5.0).bounds[2] == 11.5
+
+
+def test_mixed_brush_has_circular_and_square_columns_and_an_exact_area():
+    from contact_scene.shapes import _raster_area
+
+    b = cs.Brush(1.0, 0.07, layout="mixed", count=30, seed=1)
+    kinds = {type(p) for p in b.parts}
+    assert kinds == {cs.Circle, cs.Square} and len(b.parts) == 30 and b.area_is_exact
+    h = 1.0 / 2048                                   # the raster's cell; boundary cells are the error
+    perimeter = sum(2 * math.pi * p.radius if isinstance(p, cs.Circle) else 4 * p.side for p in b.parts)
+    assert abs(_raster_area(b) - b.area) <= perimeter * h
+    assert cs.Brush(1.0, 0.07, layout="mixed", count=30, seed=1) == b
+    with pytest.raises(cs.SceneError, match="indenter.layout"):
+        cs.Brush(1.0, 0.07, layout="spiral")
