@@ -1,0 +1,84 @@
+"""Fig. 9: a star whose rays thin like phi(r) = (r0/r)^3 pulls off at a nearly constant force.
+
+Eq. 28 gives F = sqrt(8 pi E* a^3 phi(a) w) for a contact of outer radius a and ring filling
+factor phi(a); with phi = (r0/a)^3 (Eq. 29) a drops out, F = F0 = sqrt(8 pi E* w r0^3).  For
+comparison, a full disc's Kendall force grows like a^(3/2): a factor 1.84 between a = 0.6 and
+0.9 of the outer radius.  The outer radius a of the remaining contact is read off its area,
+A(a) = 3 pi r0^2 - 2 pi r0^3 / a for the designed face.
+
+The level of the plateau is not F0: Eq. 28 takes the stiffness of the full disc of radius a,
+while the star's stiffness grows more slowly with a (thin rays add little), and
+F = K d with d^2 = 4 pi w a phi / K'(a) rises when K' falls.
+
+    python examples/fig09_constant_force.py        # full version, writes fig09_constant_force.png
+    from examples.fig09_constant_force import run  # short version (used by the tests)
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+import contact_scene as cs
+
+R0 = 0.5                     # core radius; the rays follow Eq. 29 out to OUTER
+
+
+def run(resolution: float = 16, *, n_rays: int = 8, outer: float = 1.0, window=(0.6, 0.9)) -> dict:
+    """Pull the star off with ``resolution`` elements per core radius.
+
+    ``window`` is the range of a / outer over which the plateau is measured (away from the
+    core, where the face is a full disc, and from the tips, a few cells wide).
+    """
+    import bem_griffith as bg
+
+    star = cs.PowerLawStar(n_rays=n_rays, core_radius=R0, outer_radius=outer, samples=128)
+    scene = cs.Scene(cs.Indenter(star), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
+    r = bg.solve(scene, bg.Settings(grid=cs.Grid(spacing=R0 / resolution)))
+    F0 = math.sqrt(8 * math.pi * R0**3)
+    c = r.curve
+    a = contact_radius(c.contact_area)
+    pulling = np.arange(len(a)) >= int(np.argmax(c.contact_area < c.contact_area[0]))  # detachment under way
+    m = pulling & (a > window[0] * outer) & (a < window[1] * outer)
+    F = -c.force[m] / F0
+    return {"result": r, "shape": star, "F0": F0, "radius": a[m], "force": F,
+            "plateau_spread": float(F.max() / F.min()), "plateau_level": float(np.median(F)),
+            "disc_spread": (window[1] / window[0]) ** 1.5}
+
+
+def contact_radius(area):
+    """Invert A(a) = pi r0^2 + int_r0^a 2 pi r (r0/r)^3 dr = 3 pi r0^2 - 2 pi r0^3 / a."""
+    return 2 * math.pi * R0**3 / np.maximum(3 * math.pi * R0**2 - np.asarray(area), 1e-300)
+
+
+def main(path: str = "fig09_constant_force.png", resolution: float = 48) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from crossval.plotting import plot_contact
+
+    out = run(resolution)
+    r = out["result"]
+    fig, axs = plt.subplots(1, 3, figsize=(11, 3.8), layout="constrained")
+    plot_contact(r.last_stable, axs[0], face=cs.rasterise(out["shape"], r.grid_spacing).mask)
+    axs[0].set_title("last stable contact", fontsize=8)
+    c = r.curve
+    axs[1].plot(-c.approach, -c.force / out["F0"])
+    axs[1].set_xlabel("-d")
+    axs[1].set_ylabel("-F / F0")
+    axs[2].plot(out["radius"], out["force"], ".")
+    a = np.linspace(out["radius"].min(), out["radius"].max(), 50)
+    axs[2].plot(a, out["plateau_level"] * (a / a[0]) ** 1.5, "--", label="a full disc: ~ a^(3/2)")
+    axs[2].set_xlabel("outer radius of the contact a")
+    axs[2].set_ylabel("-F / F0")
+    axs[2].legend(fontsize=7)
+    fig.savefig(path, dpi=120, bbox_inches="tight")
+    print(f"plateau over a = {out['radius'].min():.3f} .. {out['radius'].max():.3f}: F/F0 = "
+          f"{out['force'].min():.4f} .. {out['force'].max():.4f} (max/min {out['plateau_spread']:.4f}; "
+          f"a disc: {out['disc_spread']:.3f}), median {out['plateau_level']:.4f}")
+
+
+if __name__ == "__main__":
+    main()
