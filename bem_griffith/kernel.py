@@ -5,7 +5,8 @@ import math
 
 import numpy as np
 
-__all__ = ["love_square_integral", "love_influence", "padded_shape", "graded_square_integral", "graded_influence"]
+__all__ = ["love_square_integral", "love_influence", "love_influence_periodic", "padded_shape", "graded_square_integral",
+           "graded_influence", "MADELUNG_SQUARE"]
 
 
 def _f(X, Y):
@@ -51,6 +52,44 @@ def love_influence(nx: int, ny: int, spacing: float, E_star: float, padded: tupl
     """Influence coefficients of a homogeneous half-space (u = C p), in the layout of
     :func:`_offset_layout`."""
     return _offset_layout(love_square_integral, nx, ny, spacing, padded) / (math.pi * E_star)
+
+
+#: the zero-mean lattice sum of 1/|R| over the unit square lattice, sum' 1/|R| "minus" the
+#: neutralising background: 4 zeta(1/2) beta(1/2) (Glasser & Zucker); the periodic
+#: zero-mean Green's function of 1/r is 1/|x| + MADELUNG_SQUARE / L + O(|x|^2 / L^3)
+MADELUNG_SQUARE = -3.900264920001956
+
+
+def love_influence_periodic(n: int, spacing: float, E_star: float, *, images: int = 16) -> np.ndarray:
+    """Influence coefficients of a half-space periodic over an n x n cell of side L = n Delta,
+    laid out for a circular FFT convolution (entry [i, j] is the offset (i, j) modulo n).
+
+    The image sum of Love's coefficients diverges like the number of images (1/r in 2-D), but
+    by a constant: the displacement is defined up to the mean plane, and the coefficients are
+    made zero-mean over the cell.  Truncated to the cells within M of the home cell, the
+    zero-mean sum still errs by a |x|^2 / M term (the far cells' quadratic term does not
+    average out) and a 1/M^2 term; sums to M, 2M and 4M (``images`` = 4M) and two Richardson
+    steps remove both (measured: the coefficients change by 5e-6 and 1e-6 of the largest from
+    16 to 32 at n = 8 and 32; the error then falls like M^-3).
+    """
+    if images < 4 or images % 4:
+        raise ValueError(f"images must be a multiple of 4, >= 4 (got {images})")
+    L = n * spacing
+    o = np.arange(n)
+    o = np.where(o <= n // 2, o, o - n).astype(float) * spacing
+    X, Y = np.meshgrid(o, o, indexing="ij")
+    levels = (images // 4, images // 2, images)
+    sums, total, done = [], np.zeros((n, n)), -1
+    for M in levels:
+        for a in range(-M, M + 1):
+            for b in range(-M, M + 1):
+                if max(abs(a), abs(b)) > done:
+                    total += love_square_integral(X + a * L, Y + b * L, spacing / 2)
+        done = M
+        sums.append(total - total.mean())
+    r1 = 2.0 * sums[1] - sums[0]          # C + a/M + b/M^2  ->  C - b/(2 M^2)
+    r2 = 2.0 * sums[2] - sums[1]          #                  ->  C - b/(8 M^2)
+    return (4.0 * r2 - r1) / 3.0 / (math.pi * E_star)
 
 
 def padded_shape(nx: int, ny: int) -> tuple[int, int]:

@@ -30,11 +30,15 @@ class HalfSpaceOperator:
     kernel: np.ndarray
     shape: tuple[int, int]
     workers: int = 1
+    periodic: bool = False      # circular convolution over the grid itself (kernel shape = grid shape)
 
     def __post_init__(self):
         nx, ny = self.shape
         Mx, My = self.kernel.shape
-        if Mx < 2 * nx - 1 or My < 2 * ny - 1:
+        if self.periodic:
+            if (Mx, My) != (nx, ny):
+                raise ValueError(f"a periodic kernel must have the grid's shape {self.shape} (got {self.kernel.shape})")
+        elif Mx < 2 * nx - 1 or My < 2 * ny - 1:
             raise ValueError(f"kernel shape {self.kernel.shape} too small for grid {self.shape}")
         # the symbol of an even real kernel is real: multiply by the real part only
         khat = sfft.rfft2(self.kernel, workers=self.workers)
@@ -54,6 +58,8 @@ class HalfSpaceOperator:
         nx, ny = self.shape
         Mx, My = self.kernel.shape
         s = self._symbol if symbol is None else symbol
+        if self.periodic:
+            return sfft.irfft2(sfft.rfft2(p, workers=self.workers) * s, s=(nx, ny), workers=self.workers)
         a = sfft.rfft(p, n=My, axis=1, workers=self.workers)
         b = sfft.fft(a, n=Mx, axis=0, workers=self.workers, overwrite_x=True)
         b *= s

@@ -26,10 +26,11 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import optimize
 
-from contact_scene import Homogeneous, PowerLawGraded, Result, Scene, SceneError, Snapshot, Curve, rasterise, theory
+from contact_scene import (Curve, Homogeneous, PowerLawGraded, Result, Scene, SceneError, Snapshot, rasterise,
+                           rasterise_periodic, theory)
 from contact_scene.discretisation import Grid
 
-from .kernel import graded_influence, love_influence, padded_shape
+from .kernel import graded_influence, love_influence, love_influence_periodic, padded_shape
 from .linear import conjugate_gradient
 from .operator import HalfSpaceOperator
 from .settings import Settings
@@ -68,15 +69,21 @@ def _estimate_memory_gb(nx: int, ny: int) -> float:
 
 
 def build_problem(scene: Scene, settings: Settings) -> Problem:
-    if settings.grid.periodic:
-        raise SceneError("grid.periodic", "the periodic half-space is not implemented yet; only the infinite "
-                         "(zero-padded, non-periodic) half-space: use periodic = false")
     mat = scene.material
     shape = scene.indenter.shape
+    periodic = settings.grid.periodic
+    if periodic and not isinstance(mat, Homogeneous):
+        raise SceneError("grid.periodic", "the periodic half-space is implemented for homogeneous bodies only "
+                         "(the graded kernel's image sum needs its own regularisation); use periodic = false")
     h = settings.grid.spacing_for(shape)
-    raster = rasterise(shape, h)
+    raster = rasterise_periodic(shape, h, settings.grid.period) if periodic else rasterise(shape, h)
     nx, ny = raster.shape
-    need = _estimate_memory_gb(nx, ny)
+    need = _estimate_memory_gb(nx, ny) / (4 if periodic else 1)
+    if periodic and nx > 1024:
+        # the kernel's exact image sum costs 33^2 Love evaluations per coefficient: about 11 s at
+        # 256^2 here, growing like n^2 (3 min at 1024^2)
+        raise SceneError("grid.period", f"a periodic cell of {nx} x {ny} elements (> 1024 across) is too large for the "
+                         "image sum of its kernel; coarsen the grid or shrink the period")
     if need > settings.max_memory_gb:
         raise SceneError(
             "settings.max_memory_gb",
@@ -86,7 +93,7 @@ def build_problem(scene: Scene, settings: Settings) -> Problem:
     P = padded_shape(nx, ny)
     if isinstance(mat, Homogeneous):
         E = mat.effective_modulus
-        K = love_influence(nx, ny, h, E, P)
+        K = love_influence_periodic(nx, h, E) if periodic else love_influence(nx, ny, h, E, P)
         sigma_c = theory.critical_stress(E_star=E, work=w, spacing=h)
         scale_d = (lambda area: theory.upper_bound_approach(E_star=E, work=w, area=area)) if w > 0 else None
     elif isinstance(mat, PowerLawGraded):
@@ -98,7 +105,7 @@ def build_problem(scene: Scene, settings: Settings) -> Problem:
                    if w > 0 else None)
     else:  # pragma: no cover - Scene validates the material
         raise SceneError("material", f"unsupported material {type(mat).__name__}")
-    op = HalfSpaceOperator(K, (nx, ny), settings.workers)
+    op = HalfSpaceOperator(K, (nx, ny), settings.workers, periodic=periodic)
     X, Y = raster.centres()
     height = scene.indenter.profile.height(X, Y)
     inv = None
@@ -106,6 +113,11 @@ def build_problem(scene: Scene, settings: Settings) -> Problem:
         # the inverse symbol of the full-grid operator approximates (C_SS)^-1 away from the
         # contact edge; single precision suffices for a preconditioner and halves its FFT cost
         sym = op.symbol
+        if periodic:
+            # the zero-mean kernel has no mean mode; give that mode its neighbours' inverse
+            # rather than 1e6 / max, which would swamp the CG direction with a constant
+            sym = sym.copy()
+            sym[0, 0] = min(sym[1, 0], sym[0, 1])
         inv = (1.0 / np.maximum(sym, 1e-6 * sym.max())).astype(np.float32)
     return Problem(op, raster.mask, np.asarray(height, float), h, raster.origin, sigma_c,
                    scene.indenter.profile.is_flat, E, w, inv, scale_d)

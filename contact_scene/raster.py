@@ -16,7 +16,7 @@ import numpy as np
 from .errors import SceneError
 from .shapes import Shape
 
-__all__ = ["Raster", "rasterise", "MIN_INCIRCLE_CELLS"]
+__all__ = ["Raster", "rasterise", "rasterise_periodic", "MIN_INCIRCLE_CELLS"]
 
 #: a face is refused when fewer than this many cells span its incircle's diameter
 MIN_INCIRCLE_CELLS = 4
@@ -83,3 +83,35 @@ def rasterise(shape: Shape, spacing: float, *, min_incircle_cells: float = MIN_I
     sx = slice(max(ix[0] - 1, 0), min(ix[-1] + 2, nx))
     sy = slice(max(iy[0] - 1, 0), min(iy[-1] + 2, ny))
     return Raster(np.ascontiguousarray(mask[sx, sy]), float(spacing), (float(x[sx.start]), float(y[sy.start])))
+
+
+def rasterise_periodic(shape: Shape, spacing: float, period: float, *,
+                       min_incircle_cells: float = MIN_INCIRCLE_CELLS) -> Raster:
+    """The face in one periodic cell: a (period / spacing)^2 grid centred on the face's
+    centroid, with the same cells (same anchor rule) as :func:`rasterise` gives.
+
+    ``period`` must be a whole number of ``spacing`` (see ``Grid.spacing_for``) and the face
+    must fit in the cell without touching its copies (one empty cell between them)."""
+    n = round(period / spacing)
+    if n < 1 or abs(n * spacing - period) > 1e-9 * period:
+        raise SceneError("grid.period", f"the period {period:g} is not a whole number of elements of side {spacing:g}")
+    inner = rasterise(shape, spacing, min_incircle_cells=min_incircle_cells)
+    cx, cy = shape.centroid
+    # cell (i, j) of the periodic grid has its centre at centroid + (i - n // 2 + 1/2) * spacing
+    i0 = -(n // 2)
+    ox = round((inner.origin[0] - cx) / spacing - 0.5) - i0
+    oy = round((inner.origin[1] - cy) / spacing - 0.5) - i0
+    mx, my = inner.shape
+    # the raster keeps one empty ring; the face itself must leave a gap to its copies
+    ix = np.flatnonzero(inner.mask.any(axis=1))
+    iy = np.flatnonzero(inner.mask.any(axis=0))
+    if ox + ix[0] < 1 or ox + ix[-1] > n - 2 or oy + iy[0] < 1 or oy + iy[-1] > n - 2:
+        xmin, ymin, xmax, ymax = shape.bounds
+        raise SceneError("grid.period", f"the face ({xmax - xmin:g} x {ymax - ymin:g}) does not fit in the periodic "
+                         f"cell of side {period:g} with a gap of one element to its copies; enlarge the period")
+    mask = np.zeros((n, n), bool)
+    sx = slice(max(ox, 0), min(ox + mx, n))
+    sy = slice(max(oy, 0), min(oy + my, n))
+    mask[sx, sy] = inner.mask[sx.start - ox:sx.stop - ox, sy.start - oy:sy.stop - oy]
+    origin = (cx + (i0 + 0.5) * spacing, cy + (i0 + 0.5) * spacing)
+    return Raster(mask, float(spacing), origin)

@@ -148,12 +148,18 @@ def test_float32_preconditioner_does_not_change_the_answer():
     assert r32.info["matvecs"] < r64.info["matvecs"]
 
 
-def test_periodic_grid_is_refused_not_ignored():
+def test_periodic_grid_is_refused_where_not_implemented():
     import bem_energy as be
 
     sc = circle(cs.Homogeneous(0.75, 0.5))
-    grid = cs.Grid(elements_per_radius=8, periodic=True)
-    with pytest.raises(cs.SceneError, match="grid.periodic"):
-        bg.solve(sc, bg.Settings(grid=grid))
+    grid = cs.Grid(elements_per_radius=8, periodic=True, period=4.0)
     with pytest.raises(cs.SceneError, match="grid.periodic"):
         be.solve(cs.Scene(sc.indenter, sc.material, cs.Adhesion(1.0, 0.3)), be.EnergySettings(grid=grid))
+    with pytest.raises(cs.SceneError, match="grid.periodic"):
+        bg.solve(circle(cs.PowerLawGraded(1.0, 1.0, 0.5)), bg.Settings(grid=grid))
+    with pytest.raises(cs.SceneError, match="grid.period"):
+        cs.Grid(elements_per_radius=8, periodic=True)
+    with pytest.raises(cs.SceneError, match="grid.period"):
+        cs.Grid(elements_per_radius=8, period=4.0)
+    with pytest.raises(cs.SceneError, match="does not fit"):
+        bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=8, periodic=True, period=2.0)))
