@@ -32,6 +32,8 @@ class Grid:
     period: float | None = None
 
     def __post_init__(self):
+        if not isinstance(self.periodic, bool):
+            raise SceneError("grid.periodic", f"must be true or false (got {self.periodic!r})")
         if self.periodic:
             if self.period is None:
                 raise SceneError("grid.period", "a periodic grid needs the period (side of the square cell, > 0)")

@@ -161,5 +161,7 @@ def test_periodic_grid_is_refused_where_not_implemented():
         cs.Grid(elements_per_radius=8, periodic=True)
     with pytest.raises(cs.SceneError, match="grid.period"):
         cs.Grid(elements_per_radius=8, period=4.0)
+    with pytest.raises(cs.SceneError, match="grid.periodic"):
+        cs.Grid(elements_per_radius=8, periodic="yes", period=4.0)
     with pytest.raises(cs.SceneError, match="does not fit"):
         bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=8, periodic=True, period=2.0)))
