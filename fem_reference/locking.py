@@ -30,7 +30,7 @@ def displacement_only_stiffness(nu: float, *, order: int = 1, grading: float = 1
     el = {1: ElementTriP1, 2: ElementTriP2}.get(order)
     if el is None:
         raise SceneError("order", f"must be 1 or 2 (got {order})")
-    mesh = build_mesh(domain=domain, grading=grading, h_min=h_min, mapping=1.0, h_max_near=grading)
+    mesh = build_mesh(domain=domain, grading=grading, h_min=h_min, h_max_near=grading)
     ub = Basis(mesh, ElementVector(el()), intorder=2 * order + 2)
     mu = 1.0 / (2 * (1 + nu))
     lam = nu / ((1 + nu) * (1 - 2 * nu))

@@ -38,24 +38,19 @@ class Material:
         return 1.0 / (1.0 - self.k) if self.k > 0 else 1.0
 
 
-def build_mesh(*, domain: float, grading: float, h_min: float, mapping: float, h_max_near: float = 0.25,
+def build_mesh(*, domain: float, grading: float, h_min: float, h_max_near: float = 0.25,
                far_grading: float | None = None, near_radius: float = 2.0) -> MeshTri:
-    """A triangle mesh of [0, domain] x [0, domain^(1/m)] in (r, zeta), refined (red-green-blue,
-    longest edge) until every element's diameter is at most ``grading`` times its distance
-    from the punch edge (1, 0), at most ``h_max_near`` within radius 2 of the axis foot, and
-    down to ``h_min`` at the edge.  The punch edge and the dyadic nodes 2^j are vertices, so
-    the face r <= 1 is a union of boundary facets."""
-    zeta_max = domain ** (1.0 / mapping)
+    """A triangle mesh of [0, domain]^2 in (r, z) for a homogeneous body, refined
+    (red-green-blue, longest edge) until every element's diameter is at most ``grading`` times
+    its distance from the punch edge (1, 0), at most ``h_max_near`` within radius 2 of the axis
+    foot, and down to ``h_min`` at the edge.  The punch edge and the dyadic nodes 2^j are
+    vertices, so the face r <= 1 is a union of boundary facets.  Graded bodies use
+    :func:`build_tensor_mesh`."""
     rs = np.concatenate([[0.0, 0.5], 2.0 ** np.arange(0, int(np.ceil(np.log2(domain))) + 1)])
     rs = rs[rs <= domain]
     if rs[-1] < domain:
         rs = np.append(rs, domain)
-    zs = np.concatenate([[0.0, 0.5], 2.0 ** np.arange(0, int(np.ceil(np.log2(zeta_max))) + 1)])
-    # zeta_max = domain^(1/m) carries round-off (2^(20/20) = 2 + 1.3e-15): a dyadic row that
-    # close to it would make a layer of zero-area elements (seen at k = 0.95)
-    zs = zs[zs < zeta_max * (1 - 1e-9)]
-    zs = np.append(zs, zeta_max)
-    m = MeshTri.init_tensor(rs, zs)
+    m = MeshTri.init_tensor(rs, rs)
     for _ in range(200):
         p, t = m.p, m.t
         c = p[:, t].mean(axis=1)
@@ -65,13 +60,6 @@ def build_mesh(*, domain: float, grading: float, h_min: float, mapping: float, h
         near = np.hypot(c[0], c[1]) < 2.0
         g = np.where(dist < near_radius, grading, far_grading if far_grading is not None else grading)
         mark = (diam > np.maximum(g * dist, h_min)) | (near & (diam > h_max_near))
-        if mapping != 1.0:
-            # the same rule in physical depth, so that the far field is graded like z, not zeta
-            zt = p[1, t] ** mapping
-            dz = zt.max(axis=0) - zt.min(axis=0)
-            dr = p[0, t].max(axis=0) - p[0, t].min(axis=0)
-            dist_phys = np.hypot(c[0] - 1.0, c[1] ** mapping)
-            mark |= np.maximum(dz, dr) > g * np.maximum(dist_phys, 1.0)
         if not mark.any():
             break
         m = m.refined(np.flatnonzero(mark))

@@ -131,7 +131,7 @@ def unit_solution(material: Material, settings: FemSettings, *, energy_release: 
                                  mapping=material.mapping)
     else:
         mesh = build_mesh(domain=settings.domain_radius, grading=settings.grading, h_min=settings.h_min,
-                          mapping=material.mapping, h_max_near=settings.grading)
+                          h_max_near=settings.grading)
     t1 = time.perf_counter()
     model = assemble(mesh, material, order=settings.order)
     x = solve_unit_approach(model)
