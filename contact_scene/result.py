@@ -51,6 +51,12 @@ class Snapshot:
     def contact_area(self) -> float:
         return float(np.count_nonzero(self.contact)) * self.spacing**2
 
+    def centres(self) -> tuple[np.ndarray, np.ndarray]:
+        """Cell-centre coordinates X, Y on the snapshot's grid, indexed like ``contact``."""
+        nx, ny = self.contact.shape
+        return np.meshgrid(self.origin[0] + self.spacing * np.arange(nx),
+                           self.origin[1] + self.spacing * np.arange(ny), indexing="ij")
+
 
 @dataclass(frozen=True, eq=False)
 class Result:

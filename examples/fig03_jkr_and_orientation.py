@@ -48,9 +48,7 @@ def jkr(resolutions=(16, 24, 32)) -> dict:
 
 
 def _roundness(snap) -> float:
-    nx, ny = snap.contact.shape
-    X, Y = np.meshgrid(snap.origin[0] + snap.spacing * np.arange(nx), snap.origin[1] + snap.spacing * np.arange(ny),
-                       indexing="ij")
+    X, Y = snap.centres()
     x, y = X[snap.contact], Y[snap.contact]
     rad, ang = np.hypot(x, y), np.arctan2(y, x)
     sector = ((ang + np.pi) / (2 * np.pi / 8)).astype(int) % 8

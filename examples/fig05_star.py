@@ -48,9 +48,7 @@ def run(resolution: float = 16, *, fields: bool = False, shape=STAR) -> dict:
     snaps = {s.approach: s for s in r2.snapshots}
     s_first = snaps[d_first]
     # where the first cells left: their distance from the centre, against the tips' radius
-    nx, ny = s_first.contact.shape
-    X, Y = np.meshgrid(s_first.origin[0] + s_first.spacing * np.arange(nx),
-                       s_first.origin[1] + s_first.spacing * np.arange(ny), indexing="ij")
+    X, Y = s_first.centres()
     lost = _face_mask(r2, shape) & ~s_first.contact
     cx, cy = shape.centroid
     r_lost = np.hypot(X[lost] - cx, Y[lost] - cy)

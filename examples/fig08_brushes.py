@@ -58,9 +58,7 @@ def run(cells_per_side: int = 64, names=None) -> dict:
 def _reach(snapshot) -> float:
     """Largest distance of a contact cell centre from the face centre."""
     c = snapshot.contact
-    x = snapshot.origin[0] + snapshot.spacing * np.arange(c.shape[0])
-    y = snapshot.origin[1] + snapshot.spacing * np.arange(c.shape[1])
-    X, Y = np.meshgrid(x, y, indexing="ij")
+    X, Y = snapshot.centres()
     return float(np.hypot(X[c], Y[c]).max()) if c.any() else 0.0
 
 

@@ -44,7 +44,6 @@ def run_tapered(cells_across: int = 12, **shape) -> dict:
     """A tapered strip and the rectangle of the same length and area, pulled off alike: the
     fraction of the face still attached in the last stable state, and where it sits."""
     import bem_griffith as bg
-    import numpy as np
 
     strip = tapered_strip(**shape)
     x0, _, x1, _ = strip.bounds
@@ -54,8 +53,7 @@ def run_tapered(cells_across: int = 12, **shape) -> dict:
         sc = cs.Scene(cs.Indenter(face), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
         r = bg.solve(sc, bg.Settings(grid=cs.Grid(spacing=1.0 / cells_across)))
         ls = r.last_stable
-        X, _ = np.meshgrid(ls.origin[0] + ls.spacing * np.arange(ls.contact.shape[0]),
-                           ls.origin[1] + ls.spacing * np.arange(ls.contact.shape[1]), indexing="ij")
+        X, _ = ls.centres()
         out[name] = {"result": r, "last_stable_fraction": ls.contact_area / face.area,
                      "last_stable_centre": float(X[ls.contact].mean()) / (x1 - x0)}
     return out

@@ -69,16 +69,8 @@ def scaled(name: str, length: float) -> cs.Scene:
     """The same scene in units where E* = w = 1 and lengths are divided by ``length``."""
     face, _, _ = FACES[name]
     sc = scene(name)
-    return dataclasses.replace(sc, indenter=cs.Indenter(_scale(face, 1 / length)),
+    return dataclasses.replace(sc, indenter=cs.Indenter(cs.Transformed(face, scale=1 / length)),
                                material=cs.Homogeneous(0.75, 0.5), adhesion=cs.Adhesion(1.0))
-
-
-def _scale(face, s):
-    if isinstance(face, cs.TwoCircles):
-        return cs.TwoCircles(face.radius1 * s, face.radius2 * s, face.distance * s)
-    if isinstance(face, cs.Star):
-        return cs.Star(face.n_rays, face.outer_radius * s, face.inner_radius * s)
-    return cs.Triangle(tuple(tuple(v * s) for v in np.asarray(face.vertices)))
 
 
 def main(path: str = "fig13_15_physical_units.png", resolution: float = 48) -> None:
