@@ -166,7 +166,7 @@ def _projected_cg(prob, U0, d, adhesive, gtol, max_iterations) -> Minimum:
         # Newton step on the local quadratic model; where the adhesion makes the model concave
         # along S, the elastic curvature alone sets a first trial (backtracking follows)
         alpha = -gs / (prob.cell * (sHs if sHs > 0 else sKs))
-        for _ in range(60):
+        for halvings in range(60):
             Un = U + alpha * S
             clipped = Un[face] < lb
             if clipped.any():
@@ -181,6 +181,11 @@ def _projected_cg(prob, U0, d, adhesive, gtol, max_iterations) -> Minimum:
             alpha *= 0.5
         else:
             return Minimum(U, P, E, it, evals, False, pg, "line search failed")
+        if halvings >= 40:
+            # a decrease found only 2^-40 along the model step is round-off in the energy: the
+            # iteration has stagnated (l_c ~ Delta near a snap took 50 evaluations per step and
+            # 150,000 in one minimisation before this stop)
+            return Minimum(Un, Pn, En, it, evals, pg <= gtol, pg, "stagnated at round-off in the energy")
         U, P, E, G = Un, Pn, En, Gn
         if it % 50 == 0:
             # refresh P from U: the incremental update accumulates round-off

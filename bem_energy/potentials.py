@@ -1,12 +1,13 @@
 """Adhesive potentials of finite range: energy per area phi(g) of the gap g >= 0.
 
 phi' > 0 is the attractive (tensile) stress; w is the work of adhesion (phi(0) = -w,
-phi(inf) = 0) and rho the range.  The Tabor-like length l_c = E* rho^2 / w measures the
-process zone; it must be resolved by the grid (l_c >= about one element) or the result is
+phi(inf) = 0) and rho the range.  The Tabor-like length l_c = E* rho^2 / w (graded bodies:
+see :func:`process_zone_length`) measures the process zone; it must be resolved by the grid (l_c >= about one element) or the result is
 trapped by the mesh.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -14,7 +15,8 @@ import numpy as np
 from contact_scene import SceneError
 from contact_scene.errors import check_choice, check_real
 
-__all__ = ["Potential", "process_zone_length", "process_zone_modulus"]
+__all__ = ["Potential", "process_zone_length", "process_zone_modulus", "process_zone_exponent",
+           "range_for_process_zone"]
 
 
 @dataclass(frozen=True)
@@ -53,17 +55,39 @@ class Potential:
         return np.zeros_like(np.asarray(g, float))
 
 
-def process_zone_length(*, modulus: float, work: float, range: float) -> float:
-    """l_c = E* rho^2 / w (infinite without adhesion)."""
+def process_zone_length(*, modulus: float, work: float, range: float, exponent: float = 0.0) -> float:
+    """l_c = E* rho^2 / w (infinite without adhesion).
+
+    On a graded half-space (surface Green's function A_k P / r^(1+k)) a cohesive zone of
+    length l under the stress w / rho opens by about A_k (w / rho) l^(1-k); setting that to
+    rho gives l_c^(1-k) = E_k rho^2 / w with E_k = 1 / (pi A_k) (``modulus``, units of
+    stress / length^k; E* at k = 0, where this is the homogeneous l_c)."""
     if work <= 0:
         return float("inf")
     if range <= 0:
         raise SceneError("adhesion.range", f"must be > 0 (got {range:g})")
-    return modulus * range**2 / work
+    return (modulus * range**2 / work) ** (1.0 / (1.0 - exponent))
+
+
+def range_for_process_zone(*, modulus: float, work: float, length: float, exponent: float = 0.0) -> float:
+    """The range rho whose process zone (:func:`process_zone_length`) is ``length``."""
+    return math.sqrt(work * length ** (1.0 - exponent) / modulus)
 
 
 def process_zone_modulus(material) -> float:
-    """The modulus in l_c: E* of a homogeneous body, the surface modulus E0 of a graded one."""
+    """E_k = 1 / (pi A_k) of the surface Green's function A_k P / r^(1+k): E* of a
+    homogeneous body; for a graded one (3+k) c0^k / (2 pi (1+k)(2+k) E0) inverted, which at
+    k = 0 is E* = 4 E0 / 3 (nu = 1/2)."""
+    from contact_scene import Homogeneous, theory
+
+    if isinstance(material, Homogeneous):
+        return material.effective_modulus
+    A = theory.graded_green_coefficient(E0=material.surface_modulus, c0=material.reference_depth, k=material.exponent)
+    return 1.0 / (math.pi * A)
+
+
+def process_zone_exponent(material) -> float:
+    """k of the Green's function r^-(1+k): 0 for a homogeneous body."""
     from contact_scene import Homogeneous
 
-    return material.effective_modulus if isinstance(material, Homogeneous) else material.surface_modulus
+    return 0.0 if isinstance(material, Homogeneous) else float(material.exponent)

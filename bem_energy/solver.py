@@ -321,8 +321,8 @@ def pull_off(scene: Scene, settings: EnergySettings, *, spacing: float | None = 
         msgs.append(f"still attached at the pull limit d = {scene.loading.pull_limit:g} (strong adhesion)")
     if adhesive:
         lc = prob.process_zone
-        if lc < prob.spacing:
-            msgs.append(f"process zone l_c = E* rho^2 / w = {lc:.3g} is smaller than the element {prob.spacing:.3g}: "
+        if lc < prob.spacing * (1 - 1e-9):
+            msgs.append(f"process zone l_c = {lc:.3g} (E* rho^2 / w on a homogeneous body) is smaller than the element {prob.spacing:.3g}: "
                         "the result is trapped by the mesh (refine to l_c >= Delta)")
     msgs.extend(stats.notes)
     if stats.unconverged > len(stats.notes):
