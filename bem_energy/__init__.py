@@ -31,10 +31,13 @@ def solve(scene: Scene, settings: EnergySettings | ZeroRangeSettings | None = No
 
 def solve_with_resolution(scene: Scene, resolution: float | None, *, callback=None) -> Result:
     """The registry's entry.  Finite range: ``resolution`` = elements per sqrt(A/pi)
-    (default 32).  Zero range: elements per process zone (default 1)."""
+    (default 32).  Zero range: without a resolution the default (accurate, minutes) sequence;
+    with one, the harness's coarse sequence (:meth:`ZeroRangeSettings.coarse`) at
+    ``resolution`` elements per process zone, whose bias on faces with corners the harness
+    allows for."""
     ad = scene.adhesion
     if ad.work_of_adhesion > 0 and ad.range is None:
-        zs = ZeroRangeSettings() if resolution is None else ZeroRangeSettings(elements_per_process_zone=resolution)
+        zs = ZeroRangeSettings() if resolution is None else ZeroRangeSettings.coarse(resolution)
         return zero_range(scene, zs, callback=callback)
     grid = Grid(elements_per_radius=resolution if resolution is not None else 32.0)
     return pull_off(scene, EnergySettings(grid=grid), callback=callback)

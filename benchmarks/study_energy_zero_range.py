@@ -1,0 +1,103 @@
+"""The energy BEM's zero-range limit on faces with and without corners, against the Griffith BEM.
+
+1. Finite ranges l_c / a = 0.32 ... 0.01 at two elements per l_c (at least 24 per radius) for
+   the circle, the square and the equilateral triangle: F_A / F_upper (Eq. 13; Kendall for the
+   circle), raw and scaled to the nominal face area (F ~ A^(3/4)), and the local rate fitted
+   through each three consecutive ranges.
+2. Extrapolations (``bem_energy.richardson``, fitted rate) over windows of four ranges.
+3. The Griffith solver on the same faces, scaled to the nominal area, at several resolutions
+   and rotations against the grid: its "converged value" and the staircase spread around it.
+
+    python benchmarks/study_energy_zero_range.py [--quick]
+
+Long: the l_c = 0.01 a runs are 200 per radius, the Griffith triangle at 128 per radius takes
+minutes per rotation; --quick stops at 0.02 a and 64 per radius.
+"""
+from __future__ import annotations
+
+import math
+import sys
+import time
+
+import _timing  # noqa: F401  (thread settings)
+import numpy as np
+from _timing import table
+
+import bem_energy as be
+import bem_griffith as bg
+import contact_scene as cs
+from contact_scene import theory as T
+
+W, E = 0.02, 1.0
+SHAPES = {"circle": cs.Circle(1.0), "square": cs.Square(2.0), "triangle": cs.Triangle.equilateral(2.0)}
+
+
+def upper(shape):
+    return T.upper_bound_force(E_star=E, work=W, area=shape.area)
+
+
+def finite_ranges(name, ratios, epz=2.0, min_per_radius=24.0):
+    shape = SHAPES[name]
+    a = shape.equivalent_radius
+    sc = cs.Scene(cs.Indenter(shape), cs.Homogeneous(E, 0.0), cs.Adhesion(W))
+    rows, scaled = [], []
+    for r in ratios:
+        lc = r * a
+        h = min(lc / epz, a / min_per_radius)
+        t = time.perf_counter()
+        res = be.pull_off(sc, be.EnergySettings(grid=cs.Grid(spacing=h)), spacing=h,
+                          potential=be.Potential(W, math.sqrt(lc * W / E)))
+        dt = time.perf_counter() - t
+        area = cs.rasterise(shape, h).area
+        f = res.pulloff_force / upper(shape)
+        fs = f * (shape.area / area) ** 0.75
+        scaled.append(fs)
+        rows.append([r, f"{a / h:.0f}", f"{area / shape.area - 1:+.4f}", f"{f:.4f}", f"{fs:.4f}", res.converged,
+                     f"{dt:.1f}"])
+    for i, row in enumerate(rows):
+        loc = "-"
+        if 1 <= i <= len(rows) - 2:
+            fit = be.richardson(np.array(ratios[i - 1:i + 2]), np.array(scaled[i - 1:i + 2]))
+            loc = "-" if fit[1] is None else f"{fit[1]:.2f}"
+        row.append(loc)
+    print(f"\n{name}: finite ranges, F_A / F_upper (Eq. 13)", flush=True)
+    print(table(rows, ("l_c/a", "N/radius", "area err", "F/F_up", "area-scaled", "converged", "wall s",
+                       "local rate")), flush=True)
+    return np.array(ratios), np.array(scaled)
+
+
+def extrapolations(name, l, F):
+    rows = []
+    for j in range(len(l) - 3):
+        F0, p, est = be.richardson(l[j:j + 4], F[j:j + 4])
+        F2 = be.richardson(l[j:j + 4], F[j:j + 4], rate=0.5)[0]
+        rows.append([",".join(f"{x:g}" for x in l[j:j + 4]), f"{F0:.4f}", "-" if p is None else f"{p:.2f}",
+                     f"{est / F0:.2%}", f"{F2:.4f}"])
+    print(f"{name}: extrapolated F_A / F_upper over windows of four ranges")
+    print(table(rows, ("ratios", "fitted rate", "rate", "estimate", "sqrt law")), flush=True)
+
+
+def griffith(name, Ns, angles):
+    shape = SHAPES[name]
+    rows = []
+    for N in Ns:
+        vals = []
+        t = time.perf_counter()
+        for ang in angles:
+            s = cs.Transformed(shape, rotation_deg=ang) if ang else shape
+            sc = cs.Scene(cs.Indenter(s), cs.Homogeneous(E, 0.0), cs.Adhesion(W))
+            r = bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=N)))
+            vals.append(r.pulloff_force / upper(shape) * (shape.area / cs.rasterise(s, r.grid_spacing).area) ** 0.75)
+        rows.append([N] + [f"{v:.4f}" for v in vals] + [f"{np.mean(vals):.4f}", f"{time.perf_counter() - t:.0f}"])
+        print(table(rows, ["N/radius"] + [f"{a:g} deg" for a in angles] + ["mean", "wall s"]), flush=True)
+
+
+if __name__ == "__main__":
+    quick = "--quick" in sys.argv
+    ratios = (0.32, 0.16, 0.08, 0.04, 0.02) if quick else (0.32, 0.16, 0.08, 0.04, 0.02, 0.01)
+    for name in ("circle", "square", "triangle"):
+        l, F = finite_ranges(name, ratios)
+        extrapolations(name, l, F)
+    for name in ("square", "triangle"):
+        print(f"\n{name}: Griffith BEM, F_A / F_upper scaled to the nominal area, by rotation against the grid")
+        griffith(name, (32, 48, 64) if quick else (48, 64, 96, 128), (0.0, 15.0, 30.0, 45.0))
