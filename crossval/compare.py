@@ -7,7 +7,9 @@ Tolerances come from the convergence studies (README, "Accuracy, as measured"):
   less the same 0.5/N envelope) and the upper bound (Eq. 13).
 * fem_reference: ten times its own a-posteriori estimate, at least 1e-4.
 * bem_energy, zero-range limit: F_A within its extrapolation estimate, at least 1 % (the circle
-  sweep of benchmarks/study_energy.py); stiffness as the Griffith solver on its finest grid;
+  sweep of benchmarks/study_energy.py); at least 7 % for the harness's coarse sequence
+  (l_c >= 0.04 a) on faces other than the circle, which it overshoots by up to 6.7 %
+  (benchmarks/study_energy_zero_range.py); stiffness as the Griffith solver on its finest grid;
   the approach is that of the finest finite range and not checked.  A finite-range scene is not the zero-range theory: its pull-off
   is not checked against Kendall or the other methods.
 * Graded pull-off from the BEM is not checked: its criterion is uncalibrated for k != 0
@@ -99,6 +101,10 @@ def force_tolerance(scene: cs.Scene, method: str, result: cs.Result) -> float:
     if method == "fem_reference":
         return max(10 * (result.accuracy_estimate or 0.0), 1e-4)
     if method == "bem_energy" and "zero_range" in result.info:
+        if result.info["zero_range"].get("coarse") and not isinstance(scene.indenter.shape, cs.Circle):
+            # the coarse sequence's known overshoot on faces with corners (up to 6.7 %, the
+            # triangle's sqrt-law value against the default sequence's)
+            return max(result.accuracy_estimate or 0.0, 0.07)
         return max(result.accuracy_estimate or 0.0, 0.01)
     N = scene.indenter.shape.equivalent_radius / result.grid_spacing
     return (0.5 if scene.indenter.profile.is_flat else 2.5) / N
@@ -150,13 +156,23 @@ def check_results(scene: cs.Scene, results: dict) -> tuple[Check, ...]:
     return tuple(checks)
 
 
-def compare(scene: cs.Scene, *, methods=None, resolution: float | None = None, callback=None) -> Comparison:
-    """Solve ``scene`` with every applicable method (or those named) and check the results."""
+def compare(scene: cs.Scene, *, methods=None, resolution: float | None = None, resolutions: dict | None = None,
+            callback=None) -> Comparison:
+    """Solve ``scene`` with every applicable method (or those named) and check the results.
+
+    ``resolution`` is the grid methods' elements per radius; the others run their defaults
+    unless ``resolutions`` names a method's own resolution (e.g. ``{"bem_energy": 1.0}``: the
+    energy method's coarse zero-range sequence, seconds instead of minutes)."""
     chosen = applicable_methods(scene) if methods is None else [METHODS[m] for m in methods]
     skipped = {m.name: m.applies(scene) for m in METHODS.values() if m.applies(scene)}
+    own = dict(resolutions or {})
+    unknown = set(own) - set(METHODS)
+    if unknown:
+        raise cs.SceneError("resolutions", f"unknown method(s) {', '.join(sorted(unknown))}; available: {', '.join(METHODS)}")
     results = {}
     for m in chosen:
-        r = m.solve(scene, resolution=resolution if m.resolution_is_grid(scene) else None)
+        res = own[m.name] if m.name in own else (resolution if m.resolution_is_grid(scene) else None)
+        r = m.solve(scene, resolution=res)
         results[m.name] = r
         if callback is not None:
             callback(m.name, r)
