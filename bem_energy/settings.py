@@ -79,8 +79,8 @@ class ZeroRangeSettings:
         """The cheap sequence the harness sweeps (seconds, not minutes): l_c / a = 0.32 ... 0.04
         with the rate fixed at 1/2, which the circle follows there (within 0.1 % of Kendall).
         Faces with corners converge faster than sqrt(l_c) below 0.04 a, so this sequence
-        overshoots their limit: 0.925 and 0.832-0.864 of Eq. 13 for the square and the
-        triangle against 0.881 and 0.810 from the default sequence
+        overshoots their limit: 0.935 and 0.864 of Eq. 13 for the square and the triangle
+        against 0.881 and 0.810 from the default sequence
         (benchmarks/study_energy_zero_range.py)."""
         kw.setdefault("ratios", (0.32, 0.16, 0.08, 0.04))
         kw.setdefault("rate", 0.5)
