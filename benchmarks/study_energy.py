@@ -3,7 +3,9 @@
 1. Fixed range (l_c = 0.16 a): F_A against elements per radius; error against the finest.
 2. Zero-range limit: F_A / F_Kendall against l_c / a at two elements per l_c (at least 16 per
    radius), with (1 - F/F_K) / sqrt(l_c / a): constant means the rate 1/2 that
-   ``bem_energy.richardson`` assumes.  Then the extrapolations over the default ratios.
+   the harness's coarse sequence assumes.  Then sqrt-law extrapolations over consecutive
+   ratios, with the rate a free fit finds (the default procedure and the cornered faces:
+   benchmarks/study_energy_zero_range.py).
 
     python benchmarks/study_energy.py [--quick]
 """
@@ -65,7 +67,8 @@ def zero_range(ratios, epz=2.0):
     out = []
     for k in range(len(l) - 1):
         for j in range(k + 2, len(l) + 1):
-            F0, free, est = be.richardson(l[k:j], F[k:j])
+            F0, _, est = be.richardson(l[k:j], F[k:j], rate=0.5)
+            free = be.richardson(l[k:j], F[k:j])[1] if j - k >= 3 else None
             out.append((",".join(f"{x:g}" for x in l[k:j]), f"{F0 / FK - 1:+.3%}", f"{est / F0:.2%}",
                         "-" if free is None else f"{free:.2f}"))
     print("\nRichardson (rate 1/2, least squares) over consecutive ratios")
