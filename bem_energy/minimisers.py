@@ -178,6 +178,10 @@ def _projected_cg(prob, U0, d, adhesive, gtol, max_iterations) -> Minimum:
             evals += 1
             if En <= E + 1e-4 * alpha * gs:
                 break
+            if abs(En - E) <= 1e-12 * abs(E) and abs(float(np.vdot(Gn, S))) <= 0.9 * abs(gs):
+                # the energy change is at round-off, where Armijo cannot decide; the slope
+                # along S still can: accept a step that flattens it (a Wolfe-type condition)
+                break
             alpha *= 0.5
         else:
             return Minimum(U, P, E, it, evals, False, pg, "line search failed")
