@@ -16,7 +16,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from contact_scene import Grid, Result, Scene, rasterise
+from contact_scene import Circle, Grid, Result, Scene, rasterise
 
 from .potentials import Potential, process_zone_exponent, process_zone_modulus, range_for_process_zone
 from .settings import ZeroRangeSettings
@@ -31,9 +31,15 @@ COARSE_LIMIT = 0.02
 log = logging.getLogger("bem_energy")
 
 
-def _lsq(h, F, powers) -> float:
+def _lsq_fit(h, F, powers) -> tuple[float, float]:
+    """Least squares F0 + sum c_i h^p_i: (F0, sum of squared residuals)."""
     A = np.c_[[np.ones(len(h))] + [h**p for p in powers]].T
-    return float(np.linalg.lstsq(A, F, rcond=None)[0][0])
+    coef = np.linalg.lstsq(A, F, rcond=None)[0]
+    return float(coef[0]), float(np.sum((A @ coef - F) ** 2))
+
+
+def _lsq(h, F, powers) -> float:
+    return _lsq_fit(h, F, powers)[0]
 
 
 def _fit_free(h, F) -> tuple[float, float] | None:
@@ -42,9 +48,7 @@ def _fit_free(h, F) -> tuple[float, float] | None:
     from scipy.optimize import minimize_scalar
 
     def misfit(p):
-        A = np.c_[np.ones(len(h)), h**p]
-        coef = np.linalg.lstsq(A, F, rcond=None)[0]
-        return float(np.sum((A @ coef - F) ** 2))
+        return _lsq_fit(h, F, [p])[1]
 
     lo, hi = 0.2, 2.0
     ps = np.linspace(lo, hi, 37)
@@ -138,8 +142,6 @@ def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callb
             + f"; the curve, fields and pull-off approach are those of the finest range (rho = {runs[-1][1]:.4g}): "
             "the approach at the force maximum of a finite range does not tend to the zero-range one "
             "over this sequence (the maximum is broad and moves outward as the edge zone opens)"]
-    from contact_scene import Circle
-
     if min(settings.ratios) > COARSE_LIMIT and not isinstance(scene.indenter.shape, Circle):
         msgs.append(f"the sequence stops at l_c = {min(settings.ratios):g} a: faces with corners converge faster "
                     "than the circle below 0.04 a, and such a sequence overshoots their zero-range limit by up to "
