@@ -6,7 +6,7 @@ import math
 import numpy as np
 
 __all__ = ["love_square_integral", "love_influence", "love_influence_periodic", "padded_shape", "graded_square_integral",
-           "graded_influence", "MADELUNG_SQUARE"]
+           "graded_influence", "lattice_symbol", "point_kernel_transform", "MADELUNG_SQUARE"]
 
 
 def _f(X, Y):
@@ -131,3 +131,42 @@ def graded_influence(nx: int, ny: int, spacing: float, E0: float, c0: float, k: 
 
     K = _offset_layout(lambda X, Y, b: graded_square_integral(X, Y, b, k), nx, ny, spacing, padded)
     return K * graded_green_coefficient(E0=E0, c0=c0, k=k)
+
+
+def point_kernel_transform(k: float = 0.0):
+    """The 2-D Fourier transform of the point kernel r^-(1+k), as a function of |q| (angular):
+    2^(1-k) pi Gamma((1-k)/2) / Gamma((1+k)/2) |q|^(k-1); 2 pi / |q| at k = 0."""
+    from scipy.special import gamma
+
+    if not -1.0 < k < 1.0:
+        raise ValueError(f"k must be in (-1, 1) (got {k})")
+    c = 2.0 ** (1.0 - k) * math.pi * gamma((1.0 - k) / 2.0) / gamma((1.0 + k) / 2.0)
+    return lambda q: c * q ** (k - 1.0)
+
+
+def lattice_symbol(padded: tuple[int, int], spacing: float, transform, *, terms: int = 3) -> np.ndarray:
+    """The Fourier symbol of square-element influence coefficients on the infinite lattice,
+    sampled at the frequencies of a ``padded`` grid (rfft2 half-spectrum layout).
+
+    ``transform(|q|)`` is the point kernel's 2-D Fourier transform (e.g. 2/(E* |q|) for a
+    homogeneous body); by Poisson summation the symbol is the sum over the aliases
+    q + 2 pi m / Delta of transform(|q|) sinc(q_x Delta/2) sinc(q_y Delta/2), here over
+    |m_x|, |m_y| <= ``terms``.  Unlike the transform of the coefficients truncated to the
+    padded window, which for an elongated window has near-zero and negative modes, it is
+    positive: the element energy p^T C p is.  Entry [0, 0] (the continuum's 1/|q|
+    singularity) is inf."""
+    Mx, My = padded
+    h = float(spacing)
+    kx = 2.0 * math.pi * np.fft.fftfreq(Mx, d=h)[:, None]
+    ky = 2.0 * math.pi * np.fft.rfftfreq(My, d=h)[None, :]
+    total = np.zeros((Mx, My // 2 + 1))
+    for mx in range(-terms, terms + 1):
+        qx = kx + 2.0 * math.pi * mx / h
+        sx = np.sinc(qx * h / (2.0 * math.pi))
+        for my in range(-terms, terms + 1):
+            qy = ky + 2.0 * math.pi * my / h
+            q = np.hypot(qx, qy)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                total += np.where(q > 0, transform(np.where(q > 0, q, 1.0)) * sx * np.sinc(qy * h / (2.0 * math.pi)), 0.0)
+    total[0, 0] = np.inf
+    return total

@@ -35,8 +35,10 @@ class Settings:
         like Delta / a.  Saves the tail of the cascade; the pull-off force and the detachment
         approach are unchanged (tested against the uncut cascade).
     preconditioner
-        ``"fourier"`` (default): the inverse of the full-grid operator's Fourier symbol;
-        it cuts CG iterations about fivefold at the cost of one extra FFT pair each.
+        ``"fourier"`` (default): the inverse of the Fourier symbol of the element lattice
+        (``kernel.lattice_symbol``), applied on the padded grid in single precision; it cuts
+        CG iterations about fivefold at the cost of one extra FFT pair each, also for
+        elongated grids and k < 0, where the padded window's own symbol is a poor one.
     max_memory_gb
         Refuse grids whose estimated working memory exceeds this.
     """
