@@ -41,6 +41,10 @@ class Settings:
         elongated grids and k < 0, where the padded window's own symbol is a poor one.
     max_memory_gb
         Refuse grids whose estimated working memory exceeds this.
+    graded_criterion
+        Graded bodies only: ``"calibrated"`` (default) divides Eq. 42's sigma_c by the factor
+        r(k) that its flat-circle pull-off misses Eq. 39 by (``bem_griffith.criterion``,
+        -0.75 <= k <= 0.75); ``"eq42"`` keeps the theory sheet's constant (any k).
     """
 
     grid: Grid = field(default_factory=lambda: Grid(elements_per_radius=32))
@@ -54,6 +58,7 @@ class Settings:
     workers: int = field(default_factory=default_workers)
     max_memory_gb: float = 8.0
     preconditioner: str = "fourier"
+    graded_criterion: str = "calibrated"
 
     def __post_init__(self):
         if not isinstance(self.grid, Grid):
@@ -70,3 +75,4 @@ class Settings:
         object.__setattr__(self, "workers", check_int("settings.workers", self.workers, lo=1, hi=256))
         object.__setattr__(self, "max_memory_gb", check_real("settings.max_memory_gb", self.max_memory_gb, lo=0, lo_open=True))
         check_choice("settings.preconditioner", self.preconditioner, {"none", "fourier"})
+        check_choice("settings.graded_criterion", self.graded_criterion, {"calibrated", "eq42"})
