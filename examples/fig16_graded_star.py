@@ -2,8 +2,9 @@
 
 For k > 0 detachment runs from the tips inward and the force passes its maximum well before
 the end; for k < 0 the punch detaches more brittlely: the last stable contact is larger and
-its force is close to the maximum.  (The graded criterion's constant kappa(k), Eq. 42, is not
-calibrated for k != 0 - see the README - so the forces are compared only within one k.)
+its force is close to the maximum.  (The forces use the calibrated graded criterion,
+``bem_griffith.criterion``, which puts the circle on Eq. 39 at every k; the ratios compared
+here, within one k, do not depend on that calibration.)
 
     python examples/fig16_graded_star.py        # full version, writes fig16_graded_star.png
     from examples.fig16_graded_star import run  # short version (used by the tests)
