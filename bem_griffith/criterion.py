@@ -63,9 +63,5 @@ def calibration(k: float) -> tuple[float, float]:
 
 
 def stress_factor(k: float, criterion: str) -> float:
-    """The factor on Eq. 42's sigma_c."""
-    if criterion == "eq42" or k == 0:
-        return 1.0
-    if criterion == "calibrated":
-        return 1.0 / calibration(k)[0]
-    raise SceneError("settings.graded_criterion", f"must be one of {CRITERIA} (got {criterion!r})")
+    """The factor on Eq. 42's sigma_c (``criterion`` as validated by ``Settings``)."""
+    return 1.0 / calibration(k)[0] if criterion == "calibrated" and k != 0 else 1.0

@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 from contact_scene import Grid, SceneError
 from contact_scene.errors import check_choice, check_int, check_real
 
+from .criterion import CRITERIA
 from .operator import default_workers
 
 __all__ = ["Settings"]
@@ -42,9 +43,10 @@ class Settings:
     max_memory_gb
         Refuse grids whose estimated working memory exceeds this.
     graded_criterion
-        Graded bodies only: ``"calibrated"`` (default) divides Eq. 42's sigma_c by the factor
-        r(k) that its flat-circle pull-off misses Eq. 39 by (``bem_griffith.criterion``,
-        -0.75 <= k <= 0.75); ``"eq42"`` keeps the theory sheet's constant (any k).
+        Graded bodies only: ``"calibrated"`` (default) divides Eq. 42's sigma_c by r(k), the
+        factor by which the flat circle's pull-off under it misses Eq. 39, relative to the
+        homogeneous circle on the same grid (``bem_griffith.criterion``, -0.75 <= k <= 0.75);
+        ``"eq42"`` keeps the theory sheet's constant (any k).
     """
 
     grid: Grid = field(default_factory=lambda: Grid(elements_per_radius=32))
@@ -75,4 +77,4 @@ class Settings:
         object.__setattr__(self, "workers", check_int("settings.workers", self.workers, lo=1, hi=256))
         object.__setattr__(self, "max_memory_gb", check_real("settings.max_memory_gb", self.max_memory_gb, lo=0, lo_open=True))
         check_choice("settings.preconditioner", self.preconditioner, {"none", "fourier"})
-        check_choice("settings.graded_criterion", self.graded_criterion, {"calibrated", "eq42"})
+        check_choice("settings.graded_criterion", self.graded_criterion, set(CRITERIA))

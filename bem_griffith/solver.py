@@ -119,7 +119,7 @@ def build_problem(scene: Scene, settings: Settings) -> Problem:
         # the inverse of the operator's symbol approximates (C_SS)^-1 away from the contact
         # edge; taken on the infinite lattice, not from the padded window, whose truncated
         # kernel has near-zero and negative modes when the window is elongated (a 4:1
-        # rectangle then needed 28 CG iterations per solve instead of 6); single precision
+        # rectangle then needed 49 CG iterations per solve instead of 10); single precision
         # suffices for a preconditioner and halves its FFT cost
         coefficient, exponent = green
         transform = point_kernel_transform(exponent)
@@ -490,13 +490,13 @@ def solve(scene: Scene, settings: Settings | None = None, *, callback=None) -> R
         if settings.graded_criterion == "calibrated":
             r, u = calibration(k)
             graded_info = {"graded_criterion": "calibrated", "criterion_ratio": r, "criterion_uncertainty": u}
-            msgs.append(f"graded criterion: Eq. 42's sigma_c / {r:.4f}, calibrated so that the flat circle meets Eq. 39 "
-                        f"(to +-{100 * u:.1f} % over 45-181 elements per radius); other faces inherit the factor "
-                        "(bem_griffith.criterion)")
+            msgs.append(f"graded criterion: Eq. 42's sigma_c / {r:.4f}, calibrated so that the flat circle follows "
+                        f"the homogeneous one on the same grid (+-{100 * u:.2f} %, fitted over 32-181 elements per "
+                        "radius); other faces inherit the factor (bem_griffith.criterion)")
         else:
             graded_info = {"graded_criterion": "eq42"}
             msgs.append("graded criterion kappa(k) (Eq. 42) is not calibrated for k != 0: on the circle the pull-off "
-                        "force stays 43 % below (k = -0.75) to 7 % above (k = 0.75) Eq. 39 under refinement "
+                        "force stays 43 % below (k = -0.75) to 7 % above (k = 0.5) Eq. 39 under refinement "
                         "(benchmarks/study_griffith_graded.py)")
     converged = counter["unconverged"] == 0 and counter["unsettled"] == 0 and not aborted
     if counter["unconverged"]:
