@@ -24,3 +24,28 @@ def test_jkr_first_order_at_finer_grids():
     for N in (40, 48):
         err = bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=N))).pulloff_force / FJ - 1
         assert 0 < err <= 2.5 / N      # first order from above, ~1.9/N in the sweep
+
+
+@pytest.mark.parametrize("k", [-0.5, 0.5])
+def test_graded_calibration_reproduces(k):
+    """The stored r(k) (bem_griffith.criterion) from the study's own procedure on a shorter
+    sweep (32-128 per radius instead of 32-181): within the stored uncertainty u, which
+    contains the change to a c/sqrt(N) fit."""
+    import math
+
+    import numpy as np
+
+    from bem_griffith.criterion import CIRCLE_RATIO
+
+    def scaled(kk, N):
+        r = bg.solve(cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, kk), cs.Adhesion(1.0)),
+                     bg.Settings(grid=cs.Grid(elements_per_radius=N), graded_criterion="eq42"))
+        area = r.info["face_elements"] * r.grid_spacing**2
+        return r.pulloff_force * (math.pi / area) ** ((3 + kk) / 4) / T.graded_adhesion_force(
+            E0=1.0, c0=1.0, k=kk, radius=1.0, work=1.0)
+
+    Ns = np.array([32, 45, 64, 90, 128])
+    rho = np.array([scaled(k, N) / scaled(0.0, N) for N in Ns])
+    r_inf = np.linalg.lstsq(np.c_[np.ones(len(Ns)), 1.0 / Ns], rho, rcond=None)[0][0]
+    r, u = CIRCLE_RATIO[k]
+    assert abs(r_inf - r) <= u
