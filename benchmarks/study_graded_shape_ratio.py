@@ -15,7 +15,8 @@ areas, forces scaled to the nominal area, between
 
 at k = 0.5.  The energy method is not a converged reference here: its circle alone still
 moves by 2-4 % per halving of l_c, so the table shows the trend, not a limit.  l_c / a = 0.02
-takes about 15 min per k = 0.5 face on this machine; ``--quick`` stops at 0.08.
+took 25 min per k = 0.5 face on this machine (the whole script about an hour); ``--quick``
+stops at 0.08.
 """
 from __future__ import annotations
 
