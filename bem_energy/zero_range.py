@@ -16,7 +16,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from contact_scene import Circle, Grid, Result, Scene, rasterise
+from contact_scene import Circle, Grid, Result, Scene, rasterise, theory
 
 from .potentials import Potential, process_zone_exponent, process_zone_modulus, range_for_process_zone
 from .settings import ZeroRangeSettings
@@ -129,7 +129,7 @@ def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callb
         # per cent (the square: -1.4 % at 50, +0.85 % at 100 per radius); F ~ A^((3+k)/4) for a
         # face scaled in size, so without this the extrapolation fits staircase noise
         areas = np.array([rasterise(scene.indenter.shape, x[2].grid_spacing).area for x in runs])
-        Fs = raw * (scene.indenter.shape.area / areas) ** ((3.0 + k) / 4.0)
+        Fs = theory.force_at_nominal_area(raw, area=areas, nominal_area=scene.indenter.shape.area, k=k)
     else:
         Fs = raw
     F0, used_rate, est = richardson(lcs, Fs, settings.rate)

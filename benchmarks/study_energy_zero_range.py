@@ -50,7 +50,7 @@ def finite_ranges(name, ratios, epz=2.0, min_per_radius=24.0):
         dt = time.perf_counter() - t
         area = cs.rasterise(shape, h).area
         f = res.pulloff_force / upper(shape)
-        fs = f * (shape.area / area) ** 0.75
+        fs = T.force_at_nominal_area(f, area=area, nominal_area=shape.area)
         scaled.append(fs)
         rows.append([r, f"{a / h:.0f}", f"{area / shape.area - 1:+.4f}", f"{f:.4f}", f"{fs:.4f}", res.converged,
                      f"{dt:.1f}"])
@@ -87,7 +87,8 @@ def griffith(name, Ns, angles):
             s = cs.Transformed(shape, rotation_deg=ang) if ang else shape
             sc = cs.Scene(cs.Indenter(s), cs.Homogeneous(E, 0.0), cs.Adhesion(W))
             r = bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=N)))
-            vals.append(r.pulloff_force / upper(shape) * (shape.area / cs.rasterise(s, r.grid_spacing).area) ** 0.75)
+            vals.append(T.force_at_nominal_area(r.pulloff_force, area=cs.rasterise(s, r.grid_spacing).area,
+                                                nominal_area=shape.area) / upper(shape))
         rows.append([N] + [f"{v:.4f}" for v in vals] + [f"{np.mean(vals):.4f}", f"{time.perf_counter() - t:.0f}"])
         print(table(rows, ["N/radius"] + [f"{a:g} deg" for a in angles] + ["mean", "wall s"]), flush=True)
 

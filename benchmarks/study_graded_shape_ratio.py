@@ -28,13 +28,10 @@ import bem_energy as be
 import bem_griffith as bg
 import contact_scene as cs
 from bem_energy.potentials import process_zone_modulus, range_for_process_zone
+from contact_scene import theory as T
 
 FACES = {"circle": cs.Circle(1.0), "square": cs.Square(math.sqrt(math.pi))}   # both of area pi
 K = 0.5
-
-
-def scaled(force, area, k):
-    return force * (math.pi / area) ** ((3 + k) / 4)
 
 
 def griffith(N):
@@ -43,7 +40,8 @@ def griffith(N):
         for name, face in FACES.items():
             r = bg.solve(cs.Scene(cs.Indenter(face), cs.PowerLawGraded(1.0, 1.0, k), cs.Adhesion(1.0)),
                          bg.Settings(grid=cs.Grid(elements_per_radius=N), graded_criterion="eq42"))
-            out[k, name] = scaled(r.pulloff_force, r.info["face_elements"] * r.grid_spacing**2, k)
+            out[k, name] = T.force_at_nominal_area(r.pulloff_force, area=r.info["face_elements"] * r.grid_spacing**2,
+                                                   nominal_area=math.pi, k=k)
     return out
 
 
@@ -56,7 +54,7 @@ def energy(lc_over_a, per_zone=8.0, work=0.02):
             rho = range_for_process_zone(modulus=process_zone_modulus(mat), work=work, length=lc_over_a, exponent=k)
             r = be.pull_off(cs.Scene(cs.Indenter(face), mat, cs.Adhesion(work)), be.EnergySettings(grid=cs.Grid(spacing=h)),
                             spacing=h, potential=be.Potential(work, rho))
-            out[k, name] = scaled(r.pulloff_force, cs.rasterise(face, h).area, k)
+            out[k, name] = T.force_at_nominal_area(r.pulloff_force, area=cs.rasterise(face, h).area, nominal_area=math.pi, k=k)
     return out
 
 

@@ -37,7 +37,7 @@ def scaled_ratio(r, k):
     """F_A / F_A(Eq. 39), raw and scaled to the nominal area."""
     area = r.info["face_elements"] * r.grid_spacing**2
     F39 = T.graded_adhesion_force(E0=1.0, c0=1.0, k=k, radius=1.0, work=1.0)
-    return r.pulloff_force / F39, r.pulloff_force * (math.pi / area) ** ((3 + k) / 4) / F39
+    return r.pulloff_force / F39, T.force_at_nominal_area(r.pulloff_force, area=area, nominal_area=math.pi, k=k) / F39
 
 
 def fit(Ns, rho, p):
@@ -67,7 +67,7 @@ def main(ks=(-0.75, -0.5, -0.25, 0.25, 0.5, 0.75), Ns=(32, 45, 64, 90, 128, 181)
                          f"{r.timings['pull']:.1f}"])
             print(_timing.table(rows, headers), flush=True)
         (r_inf, c), resid = fit(Ns, rho, 1.0)
-        (r_half, _), resid_half = fit(Ns, rho, 0.5)
+        (r_half, _), _ = fit(Ns, rho, 0.5)
         u = max(abs(r_half - r_inf), resid)
         stored = CIRCLE_RATIO.get(k, (float("nan"), float("nan")))
         summary.append([f"{k:+.2f}", f"{r_inf:.5f}", f"{c / r_inf:+.3f}", f"{resid:.5f}", f"{r_half:.5f}", f"{u:.5f}",

@@ -22,7 +22,7 @@ __all__ = [
     "element_energy_constant", "critical_stress", "filling_equilibrium_approach",
     "filling_adhesion_force", "filling_energy", "filling_is_stable", "filling_last_stable_radius",
     "constant_force_filling", "graded_green_coefficient", "graded_stiffness", "graded_energy",
-    "graded_critical_approach", "graded_psi", "graded_adhesion_force", "graded_two_square_integral",
+    "graded_critical_approach", "graded_psi", "graded_adhesion_force", "force_at_nominal_area", "graded_two_square_integral",
     "graded_criterion_constant", "graded_critical_stress", "elliptical_punch_stiffness",
     "jkr_pulloff_force", "jkr_force", "jkr_approach",
 ]
@@ -202,6 +202,13 @@ def graded_adhesion_force(*, E0: float, c0: float, k: float, radius: float, work
                           filling_factor: float = 1.0) -> float:
     """Eq. 39 (Eq. 41 with filling factor): F_A = sqrt(8 pi psi(k) E0 phi w a^(3+k) / c0^k)."""
     return math.sqrt(8.0 * math.pi * graded_psi(k) * E0 * filling_factor * work * radius ** (3.0 + k) / c0**k)
+
+
+def force_at_nominal_area(force, *, area, nominal_area, k: float = 0.0):
+    """A pull-off force scaled from a face of ``area`` (e.g. its rasterised staircase) to the
+    same shape at ``nominal_area``: F ~ a^((3+k)/2) ~ A^((3+k)/4) (Eqs. 6 and 39).  Takes
+    arrays."""
+    return force * (nominal_area / area) ** ((3.0 + k) / 4.0)
 
 
 @lru_cache(maxsize=256)

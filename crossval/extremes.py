@@ -4,7 +4,6 @@ in the full report."""
 from __future__ import annotations
 
 import dataclasses
-
 import time
 
 import contact_scene as cs

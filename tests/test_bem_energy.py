@@ -219,7 +219,7 @@ def _area_scaled_griffith(shape, N, angle):
     s = cs.Transformed(shape, rotation_deg=angle) if angle else shape
     sc = cs.Scene(cs.Indenter(s), cs.Homogeneous(1.0, 0.0), cs.Adhesion(W))
     r = bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=N)))
-    return r.pulloff_force * (shape.area / cs.rasterise(s, r.grid_spacing).area) ** 0.75
+    return T.force_at_nominal_area(r.pulloff_force, area=cs.rasterise(s, r.grid_spacing).area, nominal_area=shape.area)
 
 
 @pytest.mark.slow

@@ -41,7 +41,7 @@ def test_graded_calibration_reproduces(k):
         r = bg.solve(cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, kk), cs.Adhesion(1.0)),
                      bg.Settings(grid=cs.Grid(elements_per_radius=N), graded_criterion="eq42"))
         area = r.info["face_elements"] * r.grid_spacing**2
-        return r.pulloff_force * (math.pi / area) ** ((3 + kk) / 4) / T.graded_adhesion_force(
+        return T.force_at_nominal_area(r.pulloff_force, area=area, nominal_area=math.pi, k=kk) / T.graded_adhesion_force(
             E0=1.0, c0=1.0, k=kk, radius=1.0, work=1.0)
 
     Ns = np.array([32, 45, 64, 90, 128])

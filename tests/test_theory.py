@@ -151,3 +151,10 @@ def test_filling_factor_relations():
     dU = (T.filling_energy(E_star=E, work=W, radius=a + h, approach=d, filling=smooth)
           - T.filling_energy(E_star=E, work=W, radius=a - h, approach=d, filling=smooth)) / (2 * h)
     assert abs(dU) < 1e-7
+
+
+@pytest.mark.parametrize("k", [-0.5, 0.0, 0.5])
+def test_force_at_nominal_area_follows_eq39_under_a_change_of_size(k):
+    F = lambda a: T.graded_adhesion_force(E0=1.3, c0=0.7, k=k, radius=a, work=0.4)  # noqa: E731
+    a, b = 1.0, 1.07
+    assert T.force_at_nominal_area(F(a), area=math.pi * a**2, nominal_area=math.pi * b**2, k=k) == pytest.approx(F(b), rel=1e-13)
