@@ -66,6 +66,34 @@ class HalfSpaceOperator:
         c = sfft.ifft(b, axis=0, workers=self.workers, overwrite_x=True)[:nx]
         return sfft.irfft(c, n=My, axis=1, workers=self.workers)[:, :ny]
 
+    def window(self, shape: tuple[int, int]) -> "HalfSpaceOperator":
+        """The same operator on a smaller grid (wx x wy cells, any wx <= nx, wy <= ny): its
+        coefficients are this kernel's for the offsets such a grid has, on the smaller padded
+        grid :func:`~bem_griffith.kernel.padded_shape` gives.  A contact set that fits into the
+        smaller grid then costs its FFTs instead of the whole face's, with the same C_SS."""
+        from .kernel import padded_shape
+
+        if self.periodic:
+            raise ValueError("a periodic operator has no smaller window: its images fill the whole cell")
+        nx, ny = self.shape
+        wx, wy = int(shape[0]), int(shape[1])
+        if not (1 <= wx <= nx and 1 <= wy <= ny):
+            raise ValueError(f"window {shape} must fit into the grid {self.shape}")
+        Mx, My = self.kernel.shape
+        Wx, Wy = padded_shape(wx, wy)
+
+        def offsets(W, w, M):
+            # the window's index -> offset -> this kernel's index, or -1 for an offset the window lacks
+            o = np.arange(W)
+            o = np.where(o < w, o, o - W)
+            return np.where(np.abs(o) <= w - 1, o % M, -1)
+
+        ix, iy = offsets(Wx, wx, Mx), offsets(Wy, wy, My)
+        K = self.kernel[np.ix_(np.maximum(ix, 0), np.maximum(iy, 0))]
+        K[ix < 0, :] = 0.0
+        K[:, iy < 0] = 0.0
+        return HalfSpaceOperator(K, (wx, wy), self.workers)
+
     def apply(self, p: np.ndarray) -> np.ndarray:
         """u = C p on the nx x ny grid."""
         return self.convolve(np.asarray(p, float))

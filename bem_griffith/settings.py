@@ -40,6 +40,12 @@ class Settings:
         (``kernel.lattice_symbol``), applied on the padded grid in single precision; it cuts
         CG iterations about fivefold at the cost of one extra FFT pair each, also for
         elongated grids and k < 0, where the padded window's own symbol is a poor one.
+    shrink_window
+        ``True`` (default): when the contact set has shrunk into a markedly smaller box of the
+        grid (padded FFT size <= 90 %), its solves run on that box's padded grid, with the
+        same coefficients C_SS (``HalfSpaceOperator.window``); one full-grid product per solve
+        then gives the gaps of the whole face.  Same answer to round-off; a star's pull-off,
+        whose tips detach first, takes about half the FFT work (``bench_griffith_pulloff.py``).
     max_memory_gb
         Refuse grids whose estimated working memory exceeds this.
     graded_criterion
@@ -60,6 +66,7 @@ class Settings:
     workers: int = field(default_factory=default_workers)
     max_memory_gb: float = 8.0
     preconditioner: str = "fourier"
+    shrink_window: bool = True
     graded_criterion: str = "calibrated"
 
     def __post_init__(self):
@@ -76,5 +83,7 @@ class Settings:
         object.__setattr__(self, "certainty_margin", check_real("settings.certainty_margin", self.certainty_margin, lo=0, lo_open=True))
         object.__setattr__(self, "workers", check_int("settings.workers", self.workers, lo=1, hi=256))
         object.__setattr__(self, "max_memory_gb", check_real("settings.max_memory_gb", self.max_memory_gb, lo=0, lo_open=True))
+        if not isinstance(self.shrink_window, bool):
+            raise SceneError("settings.shrink_window", f"must be True or False (got {self.shrink_window!r})")
         check_choice("settings.preconditioner", self.preconditioner, {"none", "fourier"})
         check_choice("settings.graded_criterion", self.graded_criterion, set(CRITERIA))

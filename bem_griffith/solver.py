@@ -57,11 +57,13 @@ class Problem:
     work: float
     inverse_symbol: np.ndarray | None = None   # Fourier preconditioner, when chosen
     upper_approach: object = None              # area -> critical approach of the circle of that area
+    green: tuple[float, float] | None = None   # point kernel coefficient / r^(1 + exponent)
+    windows: dict | None = None                # memo: window shape -> (operator, its preconditioner); None: off
 
 
 def _new_counter() -> dict:
     return dict(matvecs=0, cg_iterations=0, solves=0, residual=0.0, unconverged=0, unsettled=0,
-                detached_elements=0, cascades_cut=0)
+                detached_elements=0, cascades_cut=0, windowed_solves=0)
 
 
 def _estimate_memory_gb(nx: int, ny: int) -> float:
@@ -114,20 +116,72 @@ def build_problem(scene: Scene, settings: Settings) -> Problem:
     op = HalfSpaceOperator(K, (nx, ny), settings.workers, periodic=periodic)
     X, Y = raster.centres()
     height = scene.indenter.profile.height(X, Y)
-    inv = None
-    if settings.preconditioner == "fourier":
-        # the inverse of the operator's symbol approximates (C_SS)^-1 away from the contact
-        # edge; taken on the infinite lattice, not from the padded window, whose truncated
-        # kernel has near-zero and negative modes when the window is elongated (a 4:1
-        # rectangle then needed 49 CG iterations per solve instead of 10); single precision
-        # suffices for a preconditioner and halves its FFT cost
-        coefficient, exponent = green
-        transform = point_kernel_transform(exponent)
-        sym = lattice_symbol(op.padded_shape, h, lambda q: coefficient * transform(q))
-        sym[0, 0] = np.max(sym[[1, 0], [0, 1]]) if min(sym.shape) > 1 else np.inf
-        inv = (1.0 / sym).astype(np.float32)
+    inv = _inverse_lattice_symbol(op.padded_shape, h, green) if settings.preconditioner == "fourier" else None
     return Problem(op, raster.mask, np.asarray(height, float), h, raster.origin, sigma_c,
-                   scene.indenter.profile.is_flat, E, w, inv, scale_d)
+                   scene.indenter.profile.is_flat, E, w, inv, scale_d, green,
+                   {} if settings.shrink_window and not periodic else None)
+
+
+def _inverse_lattice_symbol(padded, spacing, green) -> np.ndarray:
+    # the inverse of the operator's symbol approximates (C_SS)^-1 away from the contact
+    # edge; taken on the infinite lattice, not from the padded window, whose truncated
+    # kernel has near-zero and negative modes when the window is elongated (a 4:1
+    # rectangle then needed 49 CG iterations per solve instead of 10); single precision
+    # suffices for a preconditioner and halves its FFT cost
+    coefficient, exponent = green
+    transform = point_kernel_transform(exponent)
+    sym = lattice_symbol(padded, spacing, lambda q: coefficient * transform(q))
+    sym[0, 0] = np.max(sym[[1, 0], [0, 1]]) if min(sym.shape) > 1 else np.inf
+    return (1.0 / sym).astype(np.float32)
+
+
+#: window extents are rounded up to multiples of n / _WINDOW_STEPS, so that a shrinking
+#: contact set reuses a few windows (each costs a kernel transform and a preconditioner symbol)
+_WINDOW_STEPS = 32
+#: a window is used only when its padded grid has at most this share of the full one's cells
+_WINDOW_GAIN = 0.9
+#: windows kept at a time (each holds a padded kernel, its transform and a preconditioner)
+_WINDOW_MEMO = 6
+
+
+def _window_length(n: int, extent: int) -> int:
+    """The window length for a set spanning ``extent`` of ``n`` cells: rounded up to the
+    quantum, then widened to the most that its FFT-friendly padded length can hold."""
+    import scipy.fft as sfft
+
+    q = max(1, n // _WINDOW_STEPS)
+    w = min(n, q * math.ceil(extent / q))
+    return min(n, (sfft.next_fast_len(2 * w - 1, real=True) + 1) // 2)
+
+
+def _window(prob: Problem, S: np.ndarray):
+    """A sub-grid (slices, operator, preconditioner) holding the contact set S whose padded
+    FFTs are markedly cheaper than the whole face's, or None."""
+    if prob.windows is None:
+        return None
+    rows, cols = np.flatnonzero(S.any(axis=1)), np.flatnonzero(S.any(axis=0))
+    if rows.size == 0:
+        return None
+    nx, ny = S.shape
+    wx = _window_length(nx, int(rows[-1] - rows[0] + 1))
+    wy = _window_length(ny, int(cols[-1] - cols[0] + 1))
+    if (wx, wy) not in prob.windows:
+        Px, Py = padded_shape(wx, wy)
+        if Px * Py > _WINDOW_GAIN * np.prod(prob.op.padded_shape):
+            prob.windows[(wx, wy)] = None
+        else:
+            opw = prob.op.window((wx, wy))
+            inv = (_inverse_lattice_symbol(opw.padded_shape, prob.spacing, prob.green)
+                   if prob.inverse_symbol is not None else None)
+            prob.windows[(wx, wy)] = (opw, inv)
+        while len(prob.windows) > _WINDOW_MEMO:   # sets mostly shrink: forget the oldest windows
+            prob.windows.pop(next(iter(prob.windows)))
+    entry = prob.windows[(wx, wy)]
+    if entry is None:
+        return None
+    # the window starts at the set's first row/column unless that would run off the grid
+    i0, j0 = min(int(rows[0]), nx - wx), min(int(cols[0]), ny - wy)
+    return (slice(i0, i0 + wx), slice(j0, j0 + wy)), entry[0], entry[1]
 
 
 # ---------------------------------------------------------------------------
@@ -153,17 +207,24 @@ class _SetSolution:
 
 
 def _solve_set(prob: Problem, S: np.ndarray, settings: Settings, warm: _SetSolution | None, counter: dict) -> _SetSolution:
-    op = prob.op
+    win = _window(prob, S)
+    if win is None:
+        op, Sw, inverse = prob.op, S, prob.inverse_symbol
+    else:
+        (sx, sy), op, inverse = win
+        counter["windowed_solves"] += 1
+        # S lies inside the window, so its row-major order there is its order on the grid
+        Sw = S[sx, sy]
 
     def matvec(v):
         counter["matvecs"] += 1
-        return op.apply_masked(v, S)
+        return op.apply_masked(v, Sw)
 
     pre = None
-    if prob.inverse_symbol is not None:
+    if inverse is not None:
         def pre(r):
             counter["matvecs"] += 1
-            return op.apply_symbol(r, S, prob.inverse_symbol)
+            return op.apply_symbol(r, Sw, inverse)
 
     def warm_start(which):
         if warm is None or not warm.S.any():
@@ -172,15 +233,22 @@ def _solve_set(prob: Problem, S: np.ndarray, settings: Settings, warm: _SetSolut
         full[warm.S] = getattr(warm, which)
         return full[S]
 
+    def image(cg):
+        if win is None:
+            return cg.image
+        # the gaps of the whole face need C x beyond the window: one operator application
+        counter["matvecs"] += 1
+        return prob.op.apply_masked(cg.x, S)
+
     n = int(S.sum())
-    kw = dict(rtol=settings.rtol, maxiter=settings.maxiter, precondition=pre, restrict=S)
+    kw = dict(rtol=settings.rtol, maxiter=settings.maxiter, precondition=pre, restrict=Sw)
     r1 = conjugate_gradient(matvec, np.ones(n), warm_start("x1"), **kw)
     its, res, ok = r1.iterations, r1.residual, r1.converged
     if prob.flat:
         xh, uh = np.zeros(n), np.zeros(prob.face.shape)
     else:
         rh = conjugate_gradient(matvec, prob.height[S], warm_start("xh"), **kw)
-        xh, uh = rh.x, rh.image
+        xh, uh = rh.x, image(rh)
         its += rh.iterations
         res = max(res, rh.residual)
         ok = ok and rh.converged
@@ -189,7 +257,7 @@ def _solve_set(prob: Problem, S: np.ndarray, settings: Settings, warm: _SetSolut
     counter["residual"] = max(counter["residual"], res)
     if not ok:
         counter["unconverged"] += 1
-    return _SetSolution(S.copy(), r1.x, xh, r1.image, uh, its, res, ok)
+    return _SetSolution(S.copy(), r1.x, xh, image(r1), uh, its, res, ok)
 
 
 # ---------------------------------------------------------------------------
@@ -523,6 +591,7 @@ def solve(scene: Scene, settings: Settings | None = None, *, callback=None) -> R
         info={"matvecs": counter["matvecs"], "solves": counter["solves"], "events": events,
               "grid": list(prob.face.shape), "face_elements": int(prob.face.sum()),
               "critical_stress": prob.sigma_c, "press_approach": d0, "cascades_cut": counter["cascades_cut"],
+              "windowed_solves": counter["windowed_solves"],
               **graded_info},
     )
 

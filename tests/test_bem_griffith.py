@@ -106,6 +106,39 @@ def test_fft_convolution_equals_direct_sum():
     assert np.allclose(op.apply(p), direct, rtol=1e-11, atol=1e-12)
 
 
+@pytest.mark.parametrize("k", [0.0, -0.5, 0.5])
+def test_window_operator_is_the_grid_operator_on_a_sub_box(k):
+    """The smaller window's coefficients are the same C_SS: a pressure that fits into the
+    window gives the grid's displacement there, on a much smaller padded grid."""
+    nx, ny = 23, 17
+    K = (love_influence(nx, ny, 0.3, 2.0, padded_shape(nx, ny)) if k == 0
+         else graded_influence(nx, ny, 0.3, 2.0, 1.0, k, padded_shape(nx, ny)))
+    op = bg.HalfSpaceOperator(K, (nx, ny))
+    rng = np.random.default_rng(3)
+    for (wx, wy), (i0, j0) in [((9, 6), (5, 11)), ((1, 17), (22, 0)), ((23, 4), (0, 2))]:
+        win = op.window((wx, wy))
+        assert np.prod(win.padded_shape) <= np.prod(padded_shape(wx, wy))
+        p = np.zeros((nx, ny))
+        p[i0:i0 + wx, j0:j0 + wy] = rng.standard_normal((wx, wy))
+        full = op.apply(p)[i0:i0 + wx, j0:j0 + wy]
+        assert np.allclose(win.apply(p[i0:i0 + wx, j0:j0 + wy]), full, rtol=0, atol=1e-13 * np.abs(full).max())
+    with pytest.raises(ValueError, match="fit"):
+        op.window((nx + 1, 3))
+
+
+def test_shrinking_window_changes_nothing():
+    """A star loses its tips first, so its later solves run on smaller windows: the same
+    events, contact sets and forces as on the whole grid (to CG round-off)."""
+    star = dataclasses.replace(circle_scene(), indenter=cs.Indenter(cs.Star(5, 1.0, 0.45)))
+    a, b = run(star, 24), run(star, 24, shrink_window=False)
+    assert a.info["windowed_solves"] > a.info["solves"] // 2 and b.info["windowed_solves"] == 0
+    assert a.info["events"] == b.info["events"] and a.info["solves"] == b.info["solves"]
+    assert np.array_equal(a.curve.contact_area, b.curve.contact_area)
+    assert np.array_equal(a.last_stable.contact, b.last_stable.contact)
+    assert a.pulloff_force == pytest.approx(b.pulloff_force, rel=1e-9)
+    assert np.allclose(a.curve.force, b.curve.force, rtol=1e-9, atol=1e-9 * b.pulloff_force)
+
+
 # -- circle: stiffness and Kendall --------------------------------------------
 
 SWEEP = (16, 24, 32, 48, 64, 96)
