@@ -279,6 +279,19 @@ def test_jkr_sphere_converges_to_1_5_pi_w_R():
     assert abs(e_inf) < 0.01
 
 
+@pytest.mark.slow
+def test_jkr_sphere_within_one_percent_without_extrapolation_slow():
+    """The issue's 1 % on the raw pull-off force needs a fine grid: measured +2.71, +1.65,
+    +1.03, +0.56 % at 80, 112, 160, 192 elements per face radius (one run each; the contact
+    radius at pull-off is 0.78 of the face's, so 192 is about 150 across it), 13 min at 192
+    with another run sharing the machine."""
+    sc = cs.load_scene(__import__("pathlib").Path(__file__).parents[1] / "scenes" / "jkr_sphere.toml")
+    r = run(sc, 192)
+    assert r.converged and r.detached
+    err = r.pulloff_force / T.jkr_pulloff_force(work=0.01, sphere_radius=1.0) - 1
+    assert 0 < err <= 0.01
+
+
 # -- robustness ----------------------------------------------------------------
 
 def test_no_adhesion_detaches_at_contact_and_strong_adhesion_is_reported():
