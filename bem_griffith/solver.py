@@ -67,9 +67,11 @@ def _new_counter() -> dict:
 
 
 def _estimate_memory_gb(nx: int, ny: int) -> float:
-    # kernel + its rfft + scratch + two transforms in flight (complex), plus face vectors
+    # kernel + its rfft + scratch + two transforms in flight (complex), plus face vectors, plus
+    # the remembered windows (each a kernel, its real symbol and a float32 preconditioner)
     padded = 4 * nx * ny
-    return (padded * 8 * 3 + padded * 16 * 3 + nx * ny * 8 * 12) / 1e9
+    windows = padded * (8 + 4 + 2) * _WINDOW_MEMO * _WINDOW_GAIN
+    return (padded * 8 * 3 + padded * 16 * 3 + windows + nx * ny * 8 * 12) / 1e9
 
 
 def build_problem(scene: Scene, settings: Settings) -> Problem:
@@ -141,7 +143,7 @@ _WINDOW_STEPS = 32
 #: a window is used only when its padded grid has at most this share of the full one's cells
 _WINDOW_GAIN = 0.9
 #: windows kept at a time (each holds a padded kernel, its transform and a preconditioner)
-_WINDOW_MEMO = 6
+_WINDOW_MEMO = 3
 
 
 def _window_length(n: int, extent: int) -> int:
