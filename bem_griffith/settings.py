@@ -44,8 +44,9 @@ class Settings:
         ``True`` (default): when the contact set has shrunk into a markedly smaller box of the
         grid (padded FFT size <= 90 %), its solves run on that box's padded grid, with the
         same coefficients C_SS (``HalfSpaceOperator.window``); one full-grid product per solve
-        then gives the gaps of the whole face.  Same answer to round-off; a star's pull-off,
-        whose tips detach first, takes about half the FFT work (``bench_griffith_pulloff.py``).
+        then gives the gaps of the whole face.  Same contact sets, forces to round-off; a
+        star's pull-off, whose tips detach first, ran 1.5x faster at 128^2 and 256^2
+        (``bench_griffith_pulloff.py``); circles hardly shrink and are unaffected.
     max_memory_gb
         Refuse grids whose estimated working memory exceeds this.
     graded_criterion

@@ -24,6 +24,7 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
+import scipy.fft as sfft
 from scipy import optimize
 
 from contact_scene import (Curve, Homogeneous, PowerLawGraded, Result, Scene, SceneError, Snapshot, rasterise,
@@ -149,8 +150,6 @@ _WINDOW_MEMO = 3
 def _window_length(n: int, extent: int) -> int:
     """The window length for a set spanning ``extent`` of ``n`` cells: rounded up to the
     quantum, then widened to the most that its FFT-friendly padded length can hold."""
-    import scipy.fft as sfft
-
     q = max(1, n // _WINDOW_STEPS)
     w = min(n, q * math.ceil(extent / q))
     return min(n, (sfft.next_fast_len(2 * w - 1, real=True) + 1) // 2)
