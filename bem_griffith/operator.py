@@ -6,6 +6,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.fft as sfft
 
+from .kernel import padded_shape
+
 __all__ = ["HalfSpaceOperator", "default_workers"]
 
 
@@ -71,8 +73,6 @@ class HalfSpaceOperator:
         coefficients are this kernel's for the offsets such a grid has, on the smaller padded
         grid :func:`~bem_griffith.kernel.padded_shape` gives.  A contact set that fits into the
         smaller grid then costs its FFTs instead of the whole face's, with the same C_SS."""
-        from .kernel import padded_shape
-
         if self.periodic:
             raise ValueError("a periodic operator has no smaller window: its images fill the whole cell")
         nx, ny = self.shape

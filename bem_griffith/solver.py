@@ -166,20 +166,16 @@ def _window(prob: Problem, S: np.ndarray):
     nx, ny = S.shape
     wx = _window_length(nx, int(rows[-1] - rows[0] + 1))
     wy = _window_length(ny, int(cols[-1] - cols[0] + 1))
-    if (wx, wy) not in prob.windows:
-        Px, Py = padded_shape(wx, wy)
-        if Px * Py > _WINDOW_GAIN * np.prod(prob.op.padded_shape):
-            prob.windows[(wx, wy)] = None
-        else:
-            opw = prob.op.window((wx, wy))
-            inv = (_inverse_lattice_symbol(opw.padded_shape, prob.spacing, prob.green)
-                   if prob.inverse_symbol is not None else None)
-            prob.windows[(wx, wy)] = (opw, inv)
+    if np.prod(padded_shape(wx, wy)) > _WINDOW_GAIN * np.prod(prob.op.padded_shape):
+        return None
+    entry = prob.windows.get((wx, wy))
+    if entry is None:
+        opw = prob.op.window((wx, wy))
+        inv = (_inverse_lattice_symbol(opw.padded_shape, prob.spacing, prob.green)
+               if prob.inverse_symbol is not None else None)
+        entry = prob.windows[(wx, wy)] = (opw, inv)
         while len(prob.windows) > _WINDOW_MEMO:   # sets mostly shrink: forget the oldest windows
             prob.windows.pop(next(iter(prob.windows)))
-    entry = prob.windows[(wx, wy)]
-    if entry is None:
-        return None
     # the window starts at the set's first row/column unless that would run off the grid
     i0, j0 = min(int(rows[0]), nx - wx), min(int(cols[0]), ny - wy)
     return (slice(i0, i0 + wx), slice(j0, j0 + wy)), entry[0], entry[1]
