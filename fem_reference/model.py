@@ -10,8 +10,12 @@ m = 1 for a homogeneous body.  Strains in the mapped coordinates (J = dz/dzeta =
 
     eps_rr = du_r/dr, eps_zz = du_z/dzeta / J, eps_tt = u_r / r, 2 eps_rz = du_r/dzeta / J + du_z/dr
 
-and the volume element is 2 pi r J dr dzeta.  The pressure p (mixed form) carries
--div u = p / lambda, so nu = 1/2 (1/lambda = 0) is exact and does not lock.
+and the volume element is 2 pi r J dr dzeta.  The strain energy is split into its deviatoric
+and volumetric parts, 2 mu (eps:eps - (tr eps)^2 / 3) + K_b (tr eps)^2 with the bulk modulus
+K_b = E / (3 (1 - 2 nu)), and the pressure p = -K_b tr eps is the mixed unknown: the form holds
+-tr eps = p / K_b with 1/K_b = 3 (1 - 2 nu) / E, finite for every nu in (-1, 1/2] and zero at
+nu = 1/2, which is then exact and does not lock.  (Carrying p = -lambda tr eps instead needs
+1/lambda, which is infinite at nu = 0: dropping it there solves an incompressible body.)
 """
 from __future__ import annotations
 
@@ -113,7 +117,7 @@ class Model:
 
 def _forms(mat: Material):
     k, nu, m = mat.k, mat.nu, mat.mapping
-    inv_lam_coef = (1 + nu) * (1 - 2 * nu) / nu if nu != 0 else None
+    inv_bulk_coef = 3 * (1 - 2 * nu)          # E / K_b: 0 at nu = 1/2, 9 at nu -> -1
 
     def geometry(w):
         r = w.x[0]
@@ -132,7 +136,8 @@ def _forms(mat: Material):
         r, J, E = geometry(w)
         mu = E / (2 * (1 + nu))
         eu, ev = strains(u, r, J), strains(v, r, J)
-        return (2 * mu * (eu[0] * ev[0] + eu[1] * ev[1] + eu[2] * ev[2]) + mu * eu[3] * ev[3]) * r * J
+        dev = eu[0] * ev[0] + eu[1] * ev[1] + eu[2] * ev[2] - (eu[0] + eu[1] + eu[2]) * (ev[0] + ev[1] + ev[2]) / 3
+        return (2 * mu * dev + mu * eu[3] * ev[3]) * r * J
 
     @BilinearForm
     def b(u, q, w):
@@ -143,9 +148,9 @@ def _forms(mat: Material):
     @BilinearForm
     def c(p, q, w):
         r, J, E = geometry(w)
-        if inv_lam_coef is None or nu == 0.5:
+        if inv_bulk_coef == 0:
             return 0.0 * p * q
-        return p * q * inv_lam_coef / E * r * J
+        return p * q * inv_bulk_coef / E * r * J
 
     return a, b, c
 
