@@ -1,18 +1,39 @@
 """On-disk cache of results, keyed by scene, method, resolution and package version.
 
+Each entry is one ``.npz`` file: the result's arrays, plus its scalars, strings and nesting as
+JSON text.  Both are data only: loading an entry never runs code, so a cache directory copied
+from elsewhere (or committed to a shared repository) is as safe to read as any data file.  An
+entry that cannot be read, or that holds another key or another format, is a miss: the result
+is recomputed and the entry overwritten, with one warning.
+
 Writes are atomic (a temporary file renamed into place), so an interrupted run leaves either
-the old entry or none, never half a file.
+the old entry or none, never half a file, and two runs sharing a directory each read whole
+entries (both compute the same deterministic result; the last rename wins).
 """
 from __future__ import annotations
 
+import dataclasses
 import hashlib
+import json
+import logging
 import os
-import pickle
 import tempfile
+import zipfile
 from importlib import metadata
 from pathlib import Path
 
-__all__ = ["ResultCache", "package_version"]
+import numpy as np
+
+from contact_scene import Curve, Result, Snapshot
+
+__all__ = ["ResultCache", "package_version", "encode_result", "decode_result", "FORMAT"]
+
+log = logging.getLogger("crossval")
+
+#: bumped whenever the entry layout changes: older entries are then misses, not errors
+FORMAT = 1
+
+_TYPES = {cls.__name__: cls for cls in (Result, Curve, Snapshot)}
 
 
 def package_version() -> str:
@@ -20,6 +41,66 @@ def package_version() -> str:
         return metadata.version("adhesive-punch")
     except metadata.PackageNotFoundError:  # pragma: no cover - running from a source tree
         return "0+unknown"
+
+
+def encode_result(result: Result) -> tuple[str, dict[str, np.ndarray]]:
+    """JSON text and the arrays it refers to (by name), for :func:`decode_result`."""
+    arrays: dict[str, np.ndarray] = {}
+
+    def enc(obj):
+        if isinstance(obj, np.ndarray):
+            name = f"a{len(arrays)}"
+            arrays[name] = obj
+            return {"__array__": name}
+        if dataclasses.is_dataclass(obj) and type(obj).__name__ in _TYPES:
+            return {"__type__": type(obj).__name__,
+                    **{f.name: enc(getattr(obj, f.name)) for f in dataclasses.fields(obj)}}
+        if isinstance(obj, dict):
+            if not all(isinstance(k, str) and not k.startswith("__") for k in obj):
+                raise TypeError(f"cannot cache a dict with keys {list(obj)!r}")
+            return {k: enc(v) for k, v in obj.items()}
+        if isinstance(obj, tuple):
+            return {"__tuple__": [enc(v) for v in obj]}
+        if isinstance(obj, list):
+            return [enc(v) for v in obj]
+        if isinstance(obj, (bool, np.bool_)):
+            return bool(obj)
+        if isinstance(obj, (int, np.integer)):
+            return int(obj)
+        if isinstance(obj, (float, np.floating)):
+            v = float(obj)
+            # JSON has no inf or nan: keep them exact as strings
+            return v if np.isfinite(v) else {"__float__": repr(v)}
+        if obj is None or isinstance(obj, str):
+            return obj
+        raise TypeError(f"cannot cache a {type(obj).__name__}")
+
+    return json.dumps(enc(result), allow_nan=False), arrays
+
+
+def decode_result(text: str, arrays) -> Result:
+    """The inverse of :func:`encode_result`; only the package's own result types are built."""
+
+    def dec(obj):
+        if isinstance(obj, list):
+            return [dec(v) for v in obj]
+        if not isinstance(obj, dict):
+            return obj
+        if "__array__" in obj:
+            return np.asarray(arrays[obj["__array__"]])
+        if "__tuple__" in obj:
+            return tuple(dec(v) for v in obj["__tuple__"])
+        if "__float__" in obj:
+            return float(obj["__float__"])
+        if "__type__" in obj:
+            cls = _TYPES[obj["__type__"]]
+            return cls(**{k: dec(v) for k, v in obj.items() if k != "__type__"})
+        return {k: dec(v) for k, v in obj.items()}
+
+    out = dec(json.loads(text))
+    if not isinstance(out, Result):
+        raise TypeError(f"the entry holds a {type(out).__name__}, not a Result")
+    return out
 
 
 class ResultCache:
@@ -35,30 +116,48 @@ class ResultCache:
         text = "\n".join([repr(scene), method, repr(resolution), package_version()])
         return hashlib.sha256(text.encode()).hexdigest()[:32]
 
-    def _path(self, key: str) -> Path:
-        return self.directory / f"{key}.pkl"
+    def path(self, key: str) -> Path:
+        """The entry's file (the directory must be set)."""
+        assert self.directory is not None
+        return self.directory / f"{key}.npz"
 
-    def get(self, key: str):
+    def get(self, key: str) -> Result | None:
         if key in self._memory:
             return self._memory[key]
         if self.directory is None:
             return None
-        try:
-            with open(self._path(key), "rb") as f:
-                return pickle.load(f)
-        except (OSError, pickle.UnpicklingError, EOFError):
+        path = self.path(key)
+        if not path.exists():
             return None
+        try:
+            with np.load(path, allow_pickle=False) as z:
+                meta = json.loads(bytes(z["__meta__"]).decode())
+                if meta.get("format") != FORMAT or meta.get("key") != key:
+                    raise ValueError(f"entry of format {meta.get('format')!r} for key {meta.get('key')!r}")
+                result = decode_result(meta["result"], z)
+        except (OSError, ValueError, KeyError, TypeError, EOFError, zipfile.BadZipFile, UnicodeDecodeError) as exc:
+            log.warning("crossval cache: ignoring unreadable entry %s (%s: %s); recomputing",
+                        path.name, type(exc).__name__, exc)
+            return None
+        self._memory[key] = result
+        return result
 
-    def put(self, key: str, value) -> None:
+    def put(self, key: str, value: Result) -> None:
         self._memory[key] = value
         if self.directory is None:
             return
+        try:
+            text, arrays = encode_result(value)
+        except TypeError as exc:
+            log.warning("crossval cache: not storing %s (%s)", key, exc)
+            return
+        meta = json.dumps({"format": FORMAT, "key": key, "result": text})
         self.directory.mkdir(parents=True, exist_ok=True)
         fd, tmp = tempfile.mkstemp(dir=self.directory, suffix=".tmp")
         try:
             with os.fdopen(fd, "wb") as f:
-                pickle.dump(value, f, protocol=pickle.HIGHEST_PROTOCOL)
-            os.replace(tmp, self._path(key))
+                np.savez(f, __meta__=np.frombuffer(meta.encode(), dtype=np.uint8), **arrays)
+            os.replace(tmp, self.path(key))
         except BaseException:
             Path(tmp).unlink(missing_ok=True)
             raise
