@@ -8,14 +8,23 @@
 3. The Griffith solver on the same faces, scaled to the nominal area, at several resolutions
    and rotations against the grid: its "converged value" and the staircase spread around it.
 
-    python benchmarks/study_energy_zero_range.py [--quick]
+    python benchmarks/study_energy_zero_range.py [--quick] [--no-griffith] [--faces circle,square]
+        [--ratios 0.32,0.16,...] [--epz 2] [--json PATH]
 
 Long: the l_c = 0.01 a runs are 200 per radius, the Griffith triangle at 128 per radius takes
-minutes per rotation; --quick stops at 0.02 a and 64 per radius.
+minutes per rotation; --quick stops at 0.02 a and 64 per radius.  ``--json PATH`` stores each
+face's sequence with full precision (ratios, spacings, areas, raw and area-scaled forces, the
+command) under the key "<face>-epz<elements per l_c>", merged into the file if it exists: the
+zero-range estimator is validated on these (tests/test_zero_range_estimator.py).
 """
 from __future__ import annotations
 
+import argparse
+import json
 import math
+import os
+import platform
+import shlex
 import sys
 import time
 
@@ -36,11 +45,13 @@ def upper(shape):
     return T.upper_bound_force(E_star=E, work=W, area=shape.area)
 
 
-def finite_ranges(name, ratios, epz=2.0, min_per_radius=24.0):
+def finite_ranges(name, ratios, epz=2.0, min_per_radius=24.0, record=None):
+    """F_A / F_upper per range; ``record`` (a dict) receives the full-precision sequence."""
     shape = SHAPES[name]
     a = shape.equivalent_radius
     sc = cs.Scene(cs.Indenter(shape), cs.Homogeneous(E, 0.0), cs.Adhesion(W))
     rows, scaled = [], []
+    raw, spacings, areas, conv, walls = [], [], [], [], []
     for r in ratios:
         lc = r * a
         h = min(lc / epz, a / min_per_radius)
@@ -52,6 +63,11 @@ def finite_ranges(name, ratios, epz=2.0, min_per_radius=24.0):
         f = res.pulloff_force / upper(shape)
         fs = T.force_at_nominal_area(f, area=area, nominal_area=shape.area)
         scaled.append(fs)
+        raw.append(res.pulloff_force)
+        spacings.append(h)
+        areas.append(area)
+        conv.append(bool(res.converged and res.detached))
+        walls.append(dt)
         rows.append([r, f"{a / h:.0f}", f"{area / shape.area - 1:+.4f}", f"{f:.4f}", f"{fs:.4f}", res.converged,
                      f"{dt:.1f}"])
     for i, row in enumerate(rows):
@@ -63,6 +79,17 @@ def finite_ranges(name, ratios, epz=2.0, min_per_radius=24.0):
     print(f"\n{name}: finite ranges, F_A / F_upper (Eq. 13)", flush=True)
     print(table(rows, ("l_c/a", "N/radius", "area err", "F/F_up", "area-scaled", "converged", "wall s",
                        "local rate")), flush=True)
+    if record is not None:
+        record.update({
+            "face": name, "shape": repr(shape), "equivalent_radius": a, "nominal_area": shape.area,
+            "youngs_modulus": E, "poisson_ratio": 0.0, "work_of_adhesion": W, "potential": "exponential",
+            "elements_per_process_zone": epz, "minimum_elements_per_radius": min_per_radius,
+            "upper_bound_force": upper(shape),
+            "kendall_force": (T.kendall_adhesion_force(E_star=E, radius=a, work=W)
+                              if isinstance(shape, cs.Circle) else None),
+            "ratios": list(map(float, ratios)), "spacings": spacings, "raster_areas": areas,
+            "raw_pulloff_forces": raw, "area_scaled_pulloff_forces": [float(f) * upper(shape) for f in scaled],
+            "area_scaled_over_upper": list(map(float, scaled)), "converged": conv, "wall_seconds": walls})
     return np.array(ratios), np.array(scaled)
 
 
@@ -93,12 +120,56 @@ def griffith(name, Ns, angles):
         print(table(rows, ["N/radius"] + [f"{a:g} deg" for a in angles] + ["mean", "wall s"]), flush=True)
 
 
+def _git_commit():
+    import subprocess
+
+    try:
+        return subprocess.run(["git", "rev-parse", "HEAD"], capture_output=True, text=True, check=True,
+                              cwd=os.path.dirname(os.path.abspath(__file__))).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return None
+
+
+def store(path, key, record):
+    """Merge one sequence into the JSON file (read, update, atomic replace)."""
+    data = {"description": "finite-range pull-off forces of bem_energy at process zones l_c = ratio * a, "
+                           "written by benchmarks/study_energy_zero_range.py --json", "sequences": {}}
+    if os.path.exists(path):
+        with open(path) as fh:
+            data = json.load(fh)
+    data["sequences"][key] = record
+    tmp = f"{path}.{os.getpid()}.tmp"
+    with open(tmp, "w") as fh:
+        json.dump(data, fh, indent=1, sort_keys=True)
+        fh.write("\n")
+    os.replace(tmp, path)
+
+
 if __name__ == "__main__":
-    quick = "--quick" in sys.argv
-    ratios = (0.32, 0.16, 0.08, 0.04, 0.02) if quick else (0.32, 0.16, 0.08, 0.04, 0.02, 0.01)
-    for name in ("circle", "square", "triangle"):
-        l, F = finite_ranges(name, ratios)
-        extrapolations(name, l, F)
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--no-griffith", action="store_true", help="skip part 3 (the Griffith solver)")
+    ap.add_argument("--faces", default="circle,square,triangle")
+    ap.add_argument("--ratios", default=None, help="comma-separated l_c / a (default 0.32 ... 0.01)")
+    ap.add_argument("--epz", type=float, default=2.0, help="elements per process zone l_c")
+    ap.add_argument("--json", default=None, help="store the sequences in this JSON file")
+    args = ap.parse_args()
+    quick = args.quick
+    if args.ratios:
+        ratios = tuple(sorted((float(x) for x in args.ratios.split(",")), reverse=True))
+    else:
+        ratios = (0.32, 0.16, 0.08, 0.04, 0.02) if quick else (0.32, 0.16, 0.08, 0.04, 0.02, 0.01)
+    command = "python benchmarks/study_energy_zero_range.py " + " ".join(shlex.quote(x) for x in sys.argv[1:])
+    for name in args.faces.split(","):
+        rec = {} if args.json else None
+        l, F = finite_ranges(name, ratios, epz=args.epz, record=rec)
+        if args.json:
+            rec.update({"command": command, "python": platform.python_version(), "git_commit": _git_commit()})
+            store(args.json, f"{name}-epz{args.epz:g}", rec)
+        if len(l) >= 4:
+            extrapolations(name, l, F)
+    if args.no_griffith:
+        sys.exit(0)
     for name in ("square", "triangle"):
         print(f"\n{name}: Griffith BEM, F_A / F_upper scaled to the nominal area, by rotation against the grid")
         griffith(name, (32, 48, 64) if quick else (48, 64, 96, 128), (0.0, 15.0, 30.0, 45.0))
