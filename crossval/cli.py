@@ -2,16 +2,17 @@
 from __future__ import annotations
 
 import dataclasses
-import json
 import logging
 import sys
 from functools import wraps
 
 import click
 
-from contact_scene import SceneError, load_scene, summarise
+from contact_scene import SceneError, summarise
 
+from .jsonio import dumps as json_dumps
 from .methods import METHODS, get_method
+from .suite import BUILTIN, SUITE, load_scene_or_builtin as load_scene
 
 log = logging.getLogger("crossval")
 
@@ -49,15 +50,24 @@ def scene():
     """Inspect scene files."""
 
 
+@scene.command("list")
+def scene_list():
+    """List the built-in scenes (usable wherever a scene FILE is asked for)."""
+    width = max(map(len, BUILTIN))
+    for name, sc in BUILTIN.items():
+        tag = "suite" if name in SUITE else "     "
+        click.echo(f"{name:<{width}}  {tag}  {sc.indenter.shape.kind}, {type(sc.material).__name__}")
+
+
 @scene.command("check")
 @click.argument("file", type=click.Path(dir_okay=False))
 @click.option("--json", "as_json", is_flag=True, help="Print the summary as JSON.")
 @_scene_errors_exit_2
 def scene_check(file, as_json):
-    """Validate FILE and print its geometry and closed-form bounds."""
+    """Validate FILE (a scene file, or a built-in scene's name) and print its geometry and closed-form bounds."""
     summary = summarise(load_scene(file))
     if as_json:
-        click.echo(json.dumps(summary, indent=2))
+        click.echo(json_dumps(summary, indent=2))
         return
     width = max(map(len, summary))
     for k, v in summary.items():
@@ -76,11 +86,15 @@ def scene_check(file, as_json):
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON (fixed keys for every method).")
 @_scene_errors_exit_2
 def solve_cmd(file, method_name, resolution, range_, as_json):
-    """Run one method on the scene in FILE."""
+    """Run one method on the scene in FILE (a scene file, or a built-in scene's name)."""
     sc = load_scene(file)
-    if range_ is not None:
-        sc = dataclasses.replace(sc, adhesion=dataclasses.replace(sc.adhesion, range=range_))
     method = get_method(method_name)
+    if range_ is not None:
+        if not method.uses_range:
+            users = ", ".join(m.name for m in METHODS.values() if m.uses_range)
+            raise SceneError("--range", f"{method.name} is a zero-range (Griffith) method and has no interaction range; "
+                             f"drop --range, or use --method {users}")
+        sc = dataclasses.replace(sc, adhesion=dataclasses.replace(sc.adhesion, range=range_))
     why_not = method.applies(sc)
     if why_not:
         raise SceneError("method", why_not)
@@ -88,7 +102,7 @@ def solve_cmd(file, method_name, resolution, range_, as_json):
         raise SceneError("resolution", f"must be > 0 (got {resolution:g})")
     res = method.solve(sc, resolution=resolution)
     if as_json:
-        click.echo(json.dumps(res.to_json()))
+        click.echo(json_dumps(res.to_json()))
         return
     rows = [
         ("method", res.method), ("pulloff_force", res.pulloff_force), ("pulloff_approach", res.pulloff_approach),
@@ -119,13 +133,13 @@ def compare_cmd(file, resolution, quick, as_json):
         raise SceneError("resolution", f"must be > 0 (got {resolution:g})")
     cmp = compare(sc, resolution=resolution, resolutions={"bem_energy": 1.0} if quick else None)
     if as_json:
-        click.echo(json.dumps({
+        click.echo(json_dumps({
             "scene": sc.name, "passed": cmp.passed, "theory": cmp.theory, "skipped": cmp.skipped,
             "results": {k: {q: getattr(r, q) for q in ("pulloff_force", "pulloff_approach", "stiffness", "converged",
                                                         "wall_time_s", "grid_spacing")} for k, r in cmp.results.items()},
             "checks": [{"method": c.method, "quantity": c.quantity, "value": c.value, "reference": c.reference,
                         "reference_name": c.reference_name, "difference": c.difference, "tolerance": c.tolerance,
-                        "passed": c.passed} for c in cmp.checks],
+                        "passed": c.passed, "role": c.role} for c in cmp.checks],
         }))
     else:
         click.echo(f"scene: {sc.name}")
@@ -140,7 +154,7 @@ def compare_cmd(file, resolution, quick, as_json):
         for k, why in cmp.skipped.items():
             click.echo(f"skipped {k}: {why}")
         for c in cmp.checks:
-            click.echo(("ok    " if c.passed else "FAIL  ") + c.explain())
+            click.echo(f"{c.label:<6}" + c.explain())
         for r in cmp.results.values():
             for m in r.messages:
                 click.echo(f"note ({r.method}): {m}")
@@ -183,9 +197,12 @@ def report_cmd(quick, out_dir, workers, scheduler, no_cache):
     with bar, logging_redirect_tqdm():
         rep = report(out_dir, quick=quick, workers=workers or default_workers(), scheduler=scheduler,
                      cache_dir=None if no_cache else ".crossval-cache", callback=cb)
-    failed = [(s, c) for s, cs_ in rep.checks.items() for c in cs_ if not c.passed]
+    every = [(s, c) for s, cs_ in rep.checks.items() for c in cs_]
+    failed = [(s, c) for s, c in every if not c.passed]
+    residuals = sum(c.passed and c.role == "calibration" for _, c in every)
     click.echo(f"wrote {rep.directory / 'index.html'} ({rep.wall_time_s:.0f} s); "
-               f"{sum(len(v) for v in rep.checks.values()) - len(failed)} checks passed, {len(failed)} failed")
+               f"{len(every) - len(failed) - residuals} checks passed, {len(failed)} failed, "
+               f"{residuals} calibration residuals within their bounds")
     for s, c in failed:
         click.echo(f"FAIL {s}: {c.explain()}")
     if failed:
@@ -248,7 +265,7 @@ def study_cmd(file, method_names, resolutions, quantity, workers, as_json):
     with bar, logging_redirect_tqdm():
         st = study(sc, methods=names, resolutions=res, quantity=quantity, workers=workers, callback=cb)
     if as_json:
-        click.echo(json.dumps({"scene": sc.name, "quantity": quantity, "reference": st.reference,
+        click.echo(json_dumps({"scene": sc.name, "quantity": quantity, "reference": st.reference,
                                "reference_name": st.reference_name, "rates": st.rates, "time_rates": st.time_rates,
                                "rows": [r.__dict__ for r in st.rows]}))
         return

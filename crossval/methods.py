@@ -20,6 +20,9 @@ class Method:
     module: str
     description: str
     applies: Callable[[Scene], str | None]  # None when it applies, else the reason it does not
+    #: whether the method models a finite interaction range (``adhesion.range``, ``--range``);
+    #: the others are zero-range (Griffith) methods and would silently ignore it
+    uses_range: bool = False
 
     def resolution_is_grid(self, scene: Scene) -> bool:
         """Whether ``resolution`` means BEM elements per radius for this scene (the FEM's is
@@ -66,6 +69,7 @@ METHODS: dict[str, Method] = {
         "bem_energy", "bem_energy",
         "FFT boundary elements minimising elastic + finite-range adhesive energy (zero-range limit by extrapolation)",
         _energy_applies,
+        uses_range=True,
     ),
     "fem_reference": Method(
         "fem_reference", "fem_reference",

@@ -10,7 +10,7 @@ import contact_scene as cs
 
 from .compare import force_tolerance
 from .methods import METHODS
-from .suite import scene as builtin_scene
+from .suite import load_scene_or_builtin
 
 __all__ = ["Reference", "reference", "assert_matches_reference"]
 
@@ -23,9 +23,10 @@ class Reference:
 
 
 def reference(scene_or_name, *, resolution: float = 64) -> Reference:
-    """The most accurate method's result for a scene (or a built-in scene's name): the FEM for
-    circular flat punches it covers, else the Griffith BEM at ``resolution`` elements per radius."""
-    scene = builtin_scene(scene_or_name) if isinstance(scene_or_name, str) else scene_or_name
+    """The most accurate method's result for a scene, a built-in scene's name or a scene file's
+    path: the FEM for circular flat punches it covers, else the Griffith BEM at ``resolution``
+    elements per radius."""
+    scene = scene_or_name if isinstance(scene_or_name, cs.Scene) else load_scene_or_builtin(scene_or_name)
     if METHODS["fem_reference"].applies(scene) is None:
         method, r = "fem_reference", METHODS["fem_reference"].solve(scene)
     else:

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import base64
 import html
-import json
 import math
 import os
 import tempfile
@@ -14,6 +13,7 @@ from pathlib import Path
 
 
 from .cache import ResultCache, package_version
+from .jsonio import dumps as json_dumps
 from .compare import check_results, reference_values
 from .methods import METHODS, applicable_methods
 from .runner import Job, run_jobs
@@ -132,7 +132,7 @@ def report(out_dir="report", *, quick: bool = True, workers: int = 1, scheduler=
             f"<td>{r.stiffness:.6g}</td><td>{r.curve.contact_area[0] if r.curve is not None else float('nan'):.4g}</td>"
             f"<td>{r.wall_time_s:.2f}</td><td>{r.converged}</td></tr>" for m, r in finest[s].items())
         theory_rows = "".join(f"<tr><td>{html.escape(k)}</td><td>{v:.6g}</td></tr>" for k, v in th.items() if k != "source")
-        chk = "".join(f"<li class={'ok' if c.passed else 'fail'}>{'ok' if c.passed else 'FAIL'}: {html.escape(c.explain())}</li>"
+        chk = "".join(f"<li class={'ok' if c.passed else 'fail'}>{c.label}: {html.escape(c.explain())}</li>"
                       for c in checks[s])
         rates = ", ".join(f"{m}: order {v:.2f}" for m, v in st.rates.items() if math.isfinite(v))
         notes = "".join(f"<li>{html.escape(m)}: {html.escape(msg)}</li>" for m, r in finest[s].items() for msg in r.messages)
@@ -148,7 +148,7 @@ def report(out_dir="report", *, quick: bool = True, workers: int = 1, scheduler=
                       "pulloff_force": r.value, "error": r.error} for r in st.rows],
             "finest": {m: {k: v for k, v in r.to_json().items() if k != "curve"} for m, r in finest[s].items()},
             "checks": [{"method": c.method, "quantity": c.quantity, "value": c.value, "reference": c.reference,
-                        "tolerance": c.tolerance, "passed": c.passed} for c in checks[s]],
+                        "tolerance": c.tolerance, "passed": c.passed, "role": c.role} for c in checks[s]],
             "rates": st.rates,
         }
     extreme_html = ""
@@ -174,5 +174,5 @@ def report(out_dir="report", *, quick: bool = True, workers: int = 1, scheduler=
         f"{wall:.0f} s.</p><h2>Agreement</h2><img src='data:image/png;base64,{agreement_png}'>" + "".join(sections)
         + extreme_html)
     _write_atomic(out / "index.html", page.encode())
-    _write_atomic(out / "results.json", json.dumps(data, indent=1, default=float).encode())
+    _write_atomic(out / "results.json", json_dumps(data, indent=1).encode())
     return Report(out, studies, checks, passed, wall)

@@ -16,6 +16,7 @@ import contact_scene as cs
 from bem_griffith.kernel import (graded_influence, lattice_symbol, love_influence, love_influence_periodic, love_square_integral,
                                  padded_shape, point_kernel_transform)
 from contact_scene import theory as T
+from crossval.suite import SCENE_DIR
 from square_quadrature import square_integral_reference
 
 E_STAR = 1.0
@@ -257,7 +258,7 @@ def test_rotation_and_mirror_invariance():
 
 def test_unit_scaling():
     # the triangle in SI units (the paper's Fig. 13 fit) and in scaled units
-    si = cs.load_scene(pathlib.Path(__file__).parents[1] / "scenes" / "triangle.toml")
+    si = cs.load_scene(SCENE_DIR / "paper_fig13_triangle.toml")
     L, E, w = 0.03, si.material.effective_modulus, 0.062
     scaled = cs.Scene(cs.Indenter(cs.Triangle.equilateral(1.0)), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
     a, b = run(si, 20), run(scaled, 20)
@@ -269,7 +270,7 @@ def test_unit_scaling():
 # -- sphere: JKR ---------------------------------------------------------------
 
 def jkr_scene():
-    return cs.load_scene(pathlib.Path(__file__).parents[1] / "scenes" / "jkr_sphere.toml")
+    return cs.load_scene(SCENE_DIR / "jkr_sphere.toml")
 
 
 def test_jkr_sphere_converges_to_1_5_pi_w_R():

@@ -1,4 +1,5 @@
 """The harness: compare, the reference helper and the pytest plugin."""
+import dataclasses
 import json
 import subprocess
 import sys
@@ -10,6 +11,7 @@ import pytest
 import contact_scene as cs
 import crossval
 from crossval.compare import Check
+from crossval.suite import SCENE_DIR
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -38,7 +40,7 @@ def test_a_failing_check_explains_itself():
 
 
 def test_compare_cli_exit_status(tmp_path):
-    r = subprocess.run([sys.executable, "-m", "crossval.cli", "compare", str(ROOT / "scenes" / "square.toml"),
+    r = subprocess.run([sys.executable, "-m", "crossval.cli", "compare", str(SCENE_DIR / "square.toml"),
                         "--resolution", "12", "--quick", "--json"], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     out = json.loads(r.stdout)
@@ -68,11 +70,38 @@ def test_plugin_fixture_is_registered(pytester):
 
 
 def test_study_cli_reports_rates_and_reference():
-    r = subprocess.run([sys.executable, "-m", "crossval.cli", "study", str(ROOT / "scenes" / "kendall_circle.toml"),
+    r = subprocess.run([sys.executable, "-m", "crossval.cli", "study", str(SCENE_DIR / "kendall_circle.toml"),
                         "--method", "bem_griffith", "--resolutions", "8,16,32", "--json"], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     out = json.loads(r.stdout)
     assert out["reference_name"].startswith("Kendall") and out["rates"]["bem_griffith"] > 0.7
-    bad = subprocess.run([sys.executable, "-m", "crossval.cli", "study", str(ROOT / "scenes" / "square.toml"),
+    bad = subprocess.run([sys.executable, "-m", "crossval.cli", "study", str(SCENE_DIR / "square.toml"),
                           "--method", "fem_reference"], capture_output=True, text=True)
     assert bad.returncode == 2 and "circular" in bad.stderr
+
+
+def test_calibrated_graded_pulloff_is_labelled_a_calibration_residual():
+    """The calibrated graded criterion is fitted to Eq. 39 on the flat circle, so that check
+    matches by construction: it is listed as a residual, never counted as a passed validation."""
+    from crossval.compare import check_results, reference_values
+    from crossval.suite import SUITE
+
+    sc = SUITE["graded_circle_k0.5"]
+    th = reference_values(sc)
+    N = 40
+    fake = cs.Result("bem_griffith", th["pulloff_force"], th["pulloff_approach"], th["stiffness"], True, 1.0 / N,
+                     info={"graded_criterion": "calibrated", "criterion_ratio": 1.0, "criterion_uncertainty": 0.003,
+                           "face_elements": round(np.pi * N * N)})
+    fem = cs.Result("fem_reference", th["pulloff_force"], th["pulloff_approach"], th["stiffness"], True, 1e-5,
+                    accuracy_estimate=1e-5)
+    checks = check_results(sc, {"bem_griffith": fake, "fem_reference": fem})
+    roles = {(c.method, c.quantity): c.role for c in checks}
+    assert roles[("bem_griffith", "pulloff_force")] == "calibration"
+    assert roles[("bem_griffith vs fem_reference", "pulloff_force")] == "calibration"
+    assert roles[("bem_griffith", "pulloff_approach")] == roles[("bem_griffith", "stiffness")] == "validation"
+    assert roles[("fem_reference", "pulloff_force")] == "validation"
+    calib = [c for c in checks if c.role == "calibration"]
+    assert all(c.label == "calib" and "not a validation" in c.explain() for c in calib)
+    # a homogeneous circle's Griffith pull-off is a validation
+    hom = check_results(SUITE["kendall_circle"], {"bem_griffith": dataclasses.replace(fake, info={})})
+    assert all(c.role == "validation" for c in hom)

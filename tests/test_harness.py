@@ -1,6 +1,8 @@
 """Sweeps: serial, processes and dask give identical results; caching; report; regress; study."""
 import json
-import pickle
+import logging
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -36,7 +38,7 @@ def test_serial_processes_and_dask_are_identical():
 def test_cache_is_reused_and_writes_are_atomic(tmp_path, monkeypatch):
     cache = ResultCache(tmp_path / "c")
     first = run_jobs(JOBS[:2], cache=cache)
-    assert len(list((tmp_path / "c").glob("*.pkl"))) == 2
+    assert len(list((tmp_path / "c").glob("*.npz"))) == 2
     monkeypatch.setattr(runner, "_run", lambda job: pytest.fail("recomputed a cached result"))
     again = run_jobs(JOBS[:2], cache=ResultCache(tmp_path / "c"))
     for a, b in zip(first, again):
@@ -46,12 +48,74 @@ def test_cache_is_reused_and_writes_are_atomic(tmp_path, monkeypatch):
 
     def boom(*a, **k):
         raise KeyboardInterrupt
-    monkeypatch.setattr(pickle, "dump", boom)
+    monkeypatch.setattr(np, "savez", boom)
     with pytest.raises(KeyboardInterrupt):
         ResultCache(tmp_path / "c").put(key, "partial")
     monkeypatch.undo()
     _same(ResultCache(tmp_path / "c").get(key), first[0])
     assert not list((tmp_path / "c").glob("*.tmp"))
+
+
+def _snapshot_job():
+    import dataclasses
+
+    import contact_scene as cs
+
+    sc = dataclasses.replace(SUITE["square"], outputs=cs.Outputs(snapshots=(-0.5,), fields=True))
+    return Job(sc, "bem_griffith", 8)
+
+
+def test_cache_round_trip_keeps_every_field(tmp_path):
+    """Arrays (curve, snapshots, fields), tuples, None, inf and nested info survive the data-only format."""
+    import dataclasses
+
+    job = _snapshot_job()
+    (res,) = run_jobs([job])
+    res = dataclasses.replace(res, accuracy_estimate=float("inf"), info={**res.info, "nested": {"t": (1, 2.5)}})
+    key = ResultCache.key(job.scene, job.method, job.resolution)
+    ResultCache(tmp_path).put(key, res)
+    back = ResultCache(tmp_path).get(key)
+    _same(res, back)
+    assert back.accuracy_estimate == float("inf") and back.info["nested"] == {"t": (1, 2.5)}
+    assert back.messages == res.messages and back.timings == res.timings
+    assert len(back.snapshots) == len(res.snapshots) == 1
+    for a, b in zip(res.snapshots + (res.last_stable,), back.snapshots + (back.last_stable,)):
+        assert a.contact.dtype == b.contact.dtype and np.array_equal(a.contact, b.contact)
+        assert np.array_equal(a.pressure, b.pressure) and a.origin == b.origin
+
+
+@pytest.mark.parametrize("damage", ["truncate", "text", "other_key", "pickle"])
+def test_damaged_cache_entry_is_a_miss_with_one_warning(tmp_path, monkeypatch, caplog, damage):
+    cache = ResultCache(tmp_path)
+    (first,) = run_jobs(JOBS[:1], cache=cache)
+    key = ResultCache.key(JOBS[0].scene, JOBS[0].method, JOBS[0].resolution)
+    path = cache.path(key)
+    if damage == "truncate":
+        path.write_bytes(path.read_bytes()[:200])
+    elif damage == "text":
+        path.write_text("not a cache entry")
+    elif damage == "other_key":
+        other = ResultCache.key(JOBS[1].scene, JOBS[1].method, JOBS[1].resolution)
+        ResultCache(tmp_path).put(other, first)
+        path.write_bytes(cache.path(other).read_bytes())
+    else:  # a pickle whose loading would run code: it must never be unpickled
+        import pickle
+
+        class Evil:
+            def __reduce__(self):
+                return (pytest.fail, ("the cache unpickled an entry",))
+        with open(path, "wb") as f:
+            np.save(f, np.array([Evil()], dtype=object), allow_pickle=True)
+    calls = []
+    monkeypatch.setattr(runner, "_run", lambda job: calls.append(job) or first)
+    with caplog.at_level(logging.WARNING, logger="crossval"):
+        (again,) = run_jobs(JOBS[:1], cache=ResultCache(tmp_path))
+    assert len(calls) == 1, "a damaged entry must be recomputed"
+    warnings = [r for r in caplog.records if r.levelno == logging.WARNING]
+    assert len(warnings) == 1 and path.name in warnings[0].getMessage()
+    _same(again, first)
+    monkeypatch.setattr(runner, "_run", lambda job: pytest.fail("the entry was not overwritten"))
+    _same(ResultCache(tmp_path).get(key), first)
 
 
 def test_study_fits_first_order_for_kendall():
@@ -66,9 +130,31 @@ def test_report_writes_a_self_contained_page(tmp_path):
     assert rep.passed
     page = (tmp_path / "r" / "index.html").read_text()
     assert page.count("data:image/png;base64,") == 3 and "square" in page
-    data = json.loads((tmp_path / "r" / "results.json").read_text())
+    data = _strict_json((tmp_path / "r" / "results.json").read_text())
     assert set(data["scenes"]) == {"kendall_circle", "square"}
     assert (tmp_path / "r" / "square.png").stat().st_size > 1000
+
+
+def _strict_json(text):
+    """RFC 8259 JSON: NaN and Infinity tokens are refused, as JavaScript's JSON.parse does."""
+    def refuse(token):
+        raise ValueError(f"not valid JSON: bare {token}")
+    return json.loads(text, parse_constant=refuse)
+
+
+def test_report_json_is_strict_even_with_non_finite_values(tmp_path, monkeypatch):
+    """A quantity with no value (a rate that could not be fitted) is null, never a bare NaN."""
+    report_module = sys.modules["crossval.report"]
+    real = report_module.study
+
+    def study_with_nan_rate(*a, **k):
+        st = real(*a, **k)
+        st.rates["bem_griffith"] = float("nan")
+        return st
+    monkeypatch.setattr(report_module, "study", study_with_nan_rate)
+    crossval.report(tmp_path / "r", quick=True, cache_dir=None, scenes=["kendall_circle"])
+    data = _strict_json((tmp_path / "r" / "results.json").read_text())
+    assert data["scenes"]["kendall_circle"]["rates"]["bem_griffith"] is None
 
 
 def test_regress_passes_and_explains_a_change(tmp_path):
@@ -91,5 +177,5 @@ def test_full_report_includes_the_extreme_cases_table(tmp_path, monkeypatch):
     crossval.report(tmp_path / "r", quick=True, cache_dir=None, scenes=["kendall_circle"], extremes=True)
     page = (tmp_path / "r" / "index.html").read_text()
     assert "Stiff and extreme cases" in page and "+2.58e-05" in page
-    data = json.loads((tmp_path / "r" / "results.json").read_text())
+    data = _strict_json((tmp_path / "r" / "results.json").read_text())
     assert data["extremes"] == [dict(zip(ex.HEADERS, row))]

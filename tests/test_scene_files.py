@@ -10,9 +10,10 @@ from hypothesis import HealthCheck, given, settings, strategies as st
 
 import contact_scene as cs
 from contact_scene.io import scene_from_dict
+from crossval.suite import SCENE_DIR
 
 ROOT = Path(__file__).resolve().parents[1]
-SCENES = sorted((ROOT / "scenes").glob("*.toml"))
+SCENES = sorted(SCENE_DIR.glob("*.toml"))
 
 BASE = {
     "indenter": {"shape": "circle", "radius": 1.0, "profile": "flat"},
@@ -106,7 +107,7 @@ def _cli(*args, cwd=None):
 
 
 def test_cli_scene_check_json(tmp_path):
-    r = _cli("scene", "check", str(ROOT / "scenes" / "kendall_circle.toml"), "--json")
+    r = _cli("scene", "check", str(SCENE_DIR / "kendall_circle.toml"), "--json")
     assert r.returncode == 0, r.stderr
     s = json.loads(r.stdout)
     assert s["kendall_force"] == pytest.approx(s["upper_bound_force"]) == pytest.approx(s["lower_bound_force"])
@@ -150,7 +151,7 @@ def test_fuzzed_values_give_scene_errors(path, value):
 
 def test_cli_solve_json_has_the_fixed_keys():
     from contact_scene.result import JSON_KEYS
-    r = _cli("solve", str(ROOT / "scenes" / "kendall_circle.toml"), "--method", "bem_griffith", "--resolution", "12", "--json")
+    r = _cli("solve", str(SCENE_DIR / "kendall_circle.toml"), "--method", "bem_griffith", "--resolution", "12", "--json")
     assert r.returncode == 0, r.stderr
     out = json.loads(r.stdout)
     assert set(JSON_KEYS) <= set(out)
@@ -158,16 +159,49 @@ def test_cli_solve_json_has_the_fixed_keys():
     assert out["converged"] is True and out["pulloff_force"] > 0
 
 
+def test_one_definition_per_scene_name():
+    """A built-in name means the same scene in the suite, in its file, and as a reference:
+    the material a user reads in the file is the one the reference was computed for."""
+    from crossval.suite import BUILTIN, SUITE, load_scene_or_builtin
+
+    assert set(SUITE) <= set(BUILTIN)
+    for name, scene in BUILTIN.items():
+        assert scene.name == name
+        assert repr(cs.load_scene(SCENE_DIR / f"{name}.toml")) == repr(scene)
+        assert load_scene_or_builtin(name) is scene
+    # the file's material is the suite's (the bug: the file was nu = 0.5, E* = 1; the suite nu = 0.3)
+    assert cs.load_scene(SCENE_DIR / "kendall_circle.toml").material.effective_modulus == \
+        pytest.approx(SUITE["kendall_circle"].material.effective_modulus, rel=1e-15)
+
+
+def test_cli_takes_a_builtin_name_and_lists_them():
+    r = _cli("scene", "list")
+    assert r.returncode == 0 and "kendall_circle" in r.stdout and "paper_fig13_triangle" in r.stdout
+    by_name = json.loads(_cli("scene", "check", "kendall_circle", "--json").stdout)
+    by_path = json.loads(_cli("scene", "check", str(SCENE_DIR / "kendall_circle.toml"), "--json").stdout)
+    assert by_name == by_path
+    r = _cli("scene", "check", "kendal_circle")
+    assert r.returncode == 2 and "built-in scenes: " in r.stderr and "Traceback" not in r.stderr
+
+
+@pytest.mark.parametrize("method", ["bem_griffith", "fem_reference"])
+def test_cli_refuses_range_for_zero_range_methods(method):
+    """--range means a finite interaction range: a Griffith method would silently ignore it."""
+    r = _cli("solve", "kendall_circle", "--method", method, "--range", "0.05")
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert r.stderr.startswith("error: --range:") and "bem_energy" in r.stderr
+
+
 def test_cli_solve_refuses_bad_resolution_and_unknown_method():
-    r = _cli("solve", str(ROOT / "scenes" / "kendall_circle.toml"), "--method", "bem_griffith", "--resolution", "1")
+    r = _cli("solve", str(SCENE_DIR / "kendall_circle.toml"), "--method", "bem_griffith", "--resolution", "1")
     assert r.returncode == 2 and "too coarse" in r.stderr and "Traceback" not in r.stderr
-    r = _cli("solve", str(ROOT / "scenes" / "kendall_circle.toml"), "--method", "magic")
+    r = _cli("solve", str(SCENE_DIR / "kendall_circle.toml"), "--method", "magic")
     assert r.returncode == 2 and "Traceback" not in r.stderr
 
 
 # whole scene files, corrupted byte-wise: a SceneError (exit status 2 in the CLI) or a valid
 # scene, never another exception
-_KENDALL = (ROOT / "scenes" / "kendall_circle.toml").read_bytes()
+_KENDALL = (SCENE_DIR / "kendall_circle.toml").read_bytes()
 
 
 @settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow,

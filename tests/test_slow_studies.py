@@ -6,6 +6,7 @@ import pytest
 import bem_griffith as bg
 import contact_scene as cs
 from contact_scene import theory as T
+from crossval.suite import SCENE_DIR
 
 pytestmark = pytest.mark.slow
 
@@ -19,7 +20,7 @@ def test_kendall_envelope_up_to_128():
 
 
 def test_jkr_first_order_at_finer_grids():
-    sc = cs.load_scene(Path(__file__).parents[1] / "scenes" / "jkr_sphere.toml")
+    sc = cs.load_scene(SCENE_DIR / "jkr_sphere.toml")
     FJ = T.jkr_pulloff_force(work=0.01, sphere_radius=1.0)
     for N in (40, 48):
         err = bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=N))).pulloff_force / FJ - 1
