@@ -2,16 +2,16 @@
 hard wall on the face, pull-off by continuation; the zero-range limit by extrapolation."""
 from __future__ import annotations
 
-from contact_scene import Grid, Result, Scene
+from contact_scene import Result, Scene
 
 from .minimisers import Minimum, minimise
 from .potentials import Potential, process_zone_length
 from .problem import EnergyProblem, build_problem
 from .settings import EnergySettings, ZeroRangeSettings
-from .solver import pull_off
+from .solver import finite_range_grid, pull_off
 from .zero_range import richardson, zero_range
 
-__all__ = ["solve", "solve_with_resolution", "pull_off", "zero_range", "richardson", "EnergySettings",
+__all__ = ["solve", "solve_with_resolution", "pull_off", "finite_range_grid", "zero_range", "richardson", "EnergySettings",
            "ZeroRangeSettings", "Potential", "process_zone_length", "EnergyProblem", "build_problem",
            "Minimum", "minimise"]
 
@@ -30,14 +30,15 @@ def solve(scene: Scene, settings: EnergySettings | ZeroRangeSettings | None = No
 
 
 def solve_with_resolution(scene: Scene, resolution: float | None, *, callback=None) -> Result:
-    """The registry's entry.  Finite range: ``resolution`` = elements per sqrt(A/pi)
-    (default 32).  Zero range: without a resolution the default (accurate, minutes) sequence;
-    with one, the harness's coarse sequence (:meth:`ZeroRangeSettings.coarse`) at
-    ``resolution`` elements per process zone, whose bias on faces with corners the harness
-    allows for."""
+    """The registry's entry.  Finite range: ``resolution`` = elements per sqrt(A/pi); without
+    one, a grid that resolves the process zone (:func:`finite_range_grid`: at least 32 per
+    radius and the potential's default elements per l_c; refused when that grid is too large).
+    A resolution too coarse for the process zone is run and reported not converged.  Zero
+    range: without a resolution the default (accurate, minutes) sequence; with one, the
+    harness's coarse sequence (:meth:`ZeroRangeSettings.coarse`) at ``resolution`` elements
+    per process zone, whose bias on faces with corners the harness allows for."""
     ad = scene.adhesion
     if ad.work_of_adhesion > 0 and ad.range is None:
         zs = ZeroRangeSettings() if resolution is None else ZeroRangeSettings.coarse(resolution)
         return zero_range(scene, zs, callback=callback)
-    grid = Grid(elements_per_radius=resolution if resolution is not None else 32.0)
-    return pull_off(scene, EnergySettings(grid=grid), callback=callback)
+    return pull_off(scene, EnergySettings(grid=finite_range_grid(scene, resolution)), callback=callback)

@@ -14,14 +14,19 @@ class EnergySettings:
     """How one finite-range pull-off is discretised and solved.
 
     grid
-        Element size, as for the Griffith solver.  The element should not exceed the
-        process zone l_c = E* rho^2 / w; a coarser grid is run but reported in the messages.
+        Element size, as for the Griffith solver.  The process zone l_c = E* rho^2 / w needs
+        a potential's fewest elements (``bem_energy.potentials.PROCESS_ZONE_ELEMENTS``: one
+        for the exponential potential, 16 for Maugis-Dugdale); a coarser grid is run, but
+        the result is not converged and its messages say which resolution suffices.
+        ``bem_energy.finite_range_grid`` picks a grid that resolves it.
     minimiser
         ``"pk"`` (default): a projected, Fourier-preconditioned conjugate-gradient iteration
         in the style of Polonsky-Keer and Rey et al.  ``"lbfgsb"``: scipy's bound-constrained
         L-BFGS-B on the surface displacement of the zero-padded grid (bounds = the hard wall on
-        the face); the same answer about 20x slower (benchmarks/bench_energy.py).  ``"cvxpy"``: the convex QP (no adhesion) or the
-        convex-concave procedure with dense face matrices, for small grids only.
+        the face); the same answer about 20x slower (benchmarks/bench_energy.py).  ``"cvxpy"``:
+        Newton's method on dense face matrices with the contact set from a convex QP solved
+        by cvxpy, for small grids only (``max_face_elements_cvxpy``); a whole pull-off agrees
+        with ``"pk"`` to the minimisers' tolerance (tests/test_energy_finite_range.py).
     steps
         Continuation steps over the default pull range; the snap-off is then located by
         bisection to ``snap_tolerance`` (relative to the Kendall approach of the face).

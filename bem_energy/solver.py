@@ -17,15 +17,16 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import optimize
 
-from contact_scene import Curve, Homogeneous, Result, Scene, SceneError, Snapshot, theory
+from contact_scene import Curve, Grid, Homogeneous, Result, Scene, SceneError, Snapshot, theory
 from contact_scene.materials import PowerLawGraded
 
 from .minimisers import Minimum, minimise
-from .potentials import Potential
+from .potentials import (PROCESS_ZONE_ELEMENTS, Potential, process_zone_exponent, process_zone_length,
+                         process_zone_modulus, range_for_process_zone)
 from .problem import EnergyProblem, build_problem
 from .settings import EnergySettings
 
-__all__ = ["pull_off", "default_potential"]
+__all__ = ["pull_off", "default_potential", "unresolved_process_zone", "finite_range_grid"]
 
 log = logging.getLogger("bem_energy")
 
@@ -37,6 +38,69 @@ def default_potential(scene: Scene) -> Potential | None:
     if ad.range is None:
         raise SceneError("adhesion.range", "a finite-range run needs a range > 0 (None means the zero-range limit)")
     return Potential(ad.work_of_adhesion, ad.range, ad.potential)
+
+
+def unresolved_process_zone(scene: Scene, prob: EnergyProblem, potential: Potential) -> str | None:
+    """Why the grid is too coarse for the process zone (None when it is fine): below the
+    potential's fewest elements per l_c (:data:`PROCESS_ZONE_ELEMENTS`) the zone is trapped by
+    the mesh and the pull-off force overshoots, e.g. 2.4 x Kendall at 0.08 elements per l_c."""
+    need = PROCESS_ZONE_ELEMENTS[potential.kind][0]
+    lc = prob.process_zone
+    per = lc / prob.spacing
+    if per >= need * (1 - 1e-9):
+        return None
+    a = scene.indenter.shape.equivalent_radius
+    formula = "E* rho^2 / w" if prob.exponent == 0 else f"(E_k rho^2 / w)^(1/(1-k)), k = {prob.exponent:g}"
+    return (f"the grid has {per:.3g} elements per process zone l_c = {lc:.3g} ({formula}, {lc / a:.3g} a); "
+            f"the {potential.kind} potential needs at least {need:g}, below which the result is trapped by the mesh: "
+            f"use --resolution {math.ceil(need * a / lc * (1 - 1e-9)):d} or more (elements per radius sqrt(A/pi)), "
+            "or a longer range")
+
+
+#: the largest raster side a finite-range run picks by itself (the padded FFT grid is twice
+#: that): a pull-off's time grows about 4x per doubling of the elements per radius N (l_c =
+#: 0.02 a: 36, 152, 572 s at 50, 100, 200 per radius, benchmarks/study_energy_process_zone.py),
+#: so 1024 cells across (512 per radius for a circle) is about an hour, and past it the user
+#: decides
+MAX_DEFAULT_SIDE = 1024
+
+#: elements per radius sqrt(A/pi) when the process zone asks for fewer (a long range, or no
+#: adhesion): the staircase error of the face is then within 0.5 % (0.16 Delta / a)
+DEFAULT_ELEMENTS_PER_RADIUS = 32.0
+
+
+def finite_range_grid(scene: Scene, resolution: float | None = None) -> Grid:
+    """The grid of a finite-range run: ``resolution`` elements per radius sqrt(A/pi) when
+    given (a grid too coarse for the process zone is run and reported not converged), else
+    the finer of 32 per radius and the potential's default elements per process zone
+    (:data:`PROCESS_ZONE_ELEMENTS`).  A default grid wider than :data:`MAX_DEFAULT_SIDE`
+    cells is refused, naming the shortest range that fits."""
+    if resolution is not None:
+        return Grid(elements_per_radius=resolution)
+    shape = scene.indenter.shape
+    a = shape.equivalent_radius
+    h = a / DEFAULT_ELEMENTS_PER_RADIUS
+    potential = default_potential(scene)
+    if potential is None:
+        return Grid(spacing=h)
+    mat = scene.material
+    E, k = process_zone_modulus(mat), process_zone_exponent(mat)
+    lc = process_zone_length(modulus=E, work=potential.work, range=potential.range, exponent=k)
+    per = PROCESS_ZONE_ELEMENTS[potential.kind][1]
+    h = min(h, lc / per)
+    xmin, ymin, xmax, ymax = shape.bounds
+    width = max(xmax - xmin, ymax - ymin)
+    side = math.ceil(width / h)
+    if side > MAX_DEFAULT_SIDE:
+        lc_min = per * width / MAX_DEFAULT_SIDE
+        rho_min = range_for_process_zone(modulus=E, work=potential.work, length=lc_min, exponent=k)
+        raise SceneError("adhesion.range", (
+            f"range {potential.range:g} gives a process zone l_c = {lc:.3g} ({lc / a:.3g} a); resolving it "
+            f"({per:g} elements per l_c for the {potential.kind} potential) needs a {side} x {side} grid "
+            f"({a / h:.0f} elements per radius), wider than the {MAX_DEFAULT_SIDE} a run picks by itself "
+            f"(an hour or more): use a range >= {rho_min:.3g} (l_c >= {lc_min / a:.3g} a), the zero-range limit (no range), "
+            "or give --resolution (a grid too coarse for l_c is run but reported not converged)"))
+    return Grid(spacing=h)
 
 
 def critical_approach_scale(scene: Scene) -> float:
@@ -319,11 +383,12 @@ def pull_off(scene: Scene, settings: EnergySettings, *, spacing: float | None = 
         F = np.array(trace_F)
     if attached and user_limit:
         msgs.append(f"still attached at the pull limit d = {scene.loading.pull_limit:g} (strong adhesion)")
+    resolved = True
     if adhesive:
-        lc = prob.process_zone
-        if lc < prob.spacing * (1 - 1e-9):
-            msgs.append(f"process zone l_c = {lc:.3g} (E* rho^2 / w on a homogeneous body) is smaller than the element {prob.spacing:.3g}: "
-                        "the result is trapped by the mesh (refine to l_c >= Delta)")
+        note = unresolved_process_zone(scene, prob, potential)
+        if note:
+            msgs.append(note)
+            resolved = False
     msgs.extend(stats.notes)
     if stats.unconverged > len(stats.notes):
         msgs.append(f"{stats.unconverged} minimisations did not converge in all")
@@ -333,13 +398,14 @@ def pull_off(scene: Scene, settings: EnergySettings, *, spacing: float | None = 
             "face_elements": int(prob.face.sum()), "press_approach": float(d0), "peak": peak}
     if adhesive:
         info.update(range=potential.range, potential=potential.kind, process_zone=prob.process_zone,
-                    process_zone_per_element=prob.process_zone / prob.spacing)
+                    process_zone_per_element=prob.process_zone / prob.spacing,
+                    process_zone_elements_needed=PROCESS_ZONE_ELEMENTS[potential.kind][0])
     return Result(
         method="bem_energy",
         pulloff_force=pulloff,
         pulloff_approach=pulloff_d,
         stiffness=float(stiffness),
-        converged=stats.unconverged == 0 and steps <= max_steps,
+        converged=stats.unconverged == 0 and steps <= max_steps and resolved,
         grid_spacing=prob.spacing,
         curve=curve if scene.outputs.curve else None,
         detached=not attached,
