@@ -12,7 +12,7 @@ when the small lobe goes, the second the large circle's own Kendall force (Eq. 6
 Everything is in SI units (m, Pa, N/m); a solve of the same scene in scaled units (E* = w = 1,
 lengths / L) gives the same numbers after scaling by sqrt(E* w L^3) and sqrt(w L / E*).
 
-    python examples/fig13_15_physical_units.py        # full version, writes fig13_15_physical_units.png
+    python examples/fig13_15_physical_units.py        # full version, writes docs/gallery/fig13_15_physical_units.png
     from examples.fig13_15_physical_units import run  # short version (used by the tests)
 """
 from __future__ import annotations
@@ -24,6 +24,11 @@ from scipy.signal import find_peaks
 
 import contact_scene as cs
 from contact_scene import theory as T
+
+try:                                    # imported as examples.<name> (tests) or run as a script
+    from examples import _gallery
+except ImportError:
+    import _gallery
 
 MM = 1e-3
 # face, E* [Pa], w [N/m]: the paper's fits (Figs. 13, 14, 15); face sizes assumed
@@ -73,37 +78,61 @@ def scaled(name: str, length: float) -> cs.Scene:
                                material=cs.Homogeneous(0.75, 0.5), adhesion=cs.Adhesion(1.0))
 
 
-def main(path: str = "fig13_15_physical_units.png", resolution: float = 48) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
+def plot(out: dict, path=None):
+    """Curves (top) and last stable contacts (bottom), every length in mm, every force in mN."""
     import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
 
-    from crossval.plotting import plot_contact
-
-    out = run(resolution)
-    fig, axs = plt.subplots(2, 3, figsize=(12, 7.5), layout="constrained")
+    fig, axs = plt.subplots(2, 3, figsize=(12, 7.8), layout="constrained")
     for col, (name, o) in enumerate(out.items()):
         r = o["result"]
         ax = axs[0, col]
-        ax.plot(-r.curve.approach / MM, -r.curve.force * 1e3, "r-")
-        for F, d in o["maxima"]:
-            ax.plot(-d / MM, F * 1e3, "ko", ms=4)
+        ax.plot(-r.curve.approach / MM, -r.curve.force * 1e3, "r-", label="BEM (Griffith)")
+        ax.plot([-d / MM for _, d in o["maxima"]], [F * 1e3 for F, _ in o["maxima"]], "ko", ms=4,
+                label="force maxima")
+        ls = r.last_stable
+        ax.plot(-ls.approach / MM, -ls.force * 1e3, "bs", ms=4, mfc="none", label="last stable state")
         ax.set_xlabel("pull-off distance -d [mm]")
         ax.set_ylabel("attracting force -F [mN]")
-        ax.set_title(f"{name}: E* = {o['E_star'] / 1e3:.2f} kPa, w = {o['work']:.3f} N/m", fontsize=8)
+        ax.set_title(f"{name}: E* = {o['E_star'] / 1e3:.2f} kPa, w = {o['work']:.3f} N/m", fontsize=9)
+        ax.legend(fontsize=7, loc="upper left")
         ax = axs[1, col]
-        plot_contact(r.last_stable, ax, face=cs.rasterise(FACES[name][0], r.grid_spacing).mask)
-        cx, cy = FACES[name][0].centroid
-        ax.add_patch(plt.Circle((cx, cy), o["holm_radius"], fill=False, color="g"))
-        ax.set_title("last stable contact; green: Holm radius", fontsize=8)
-    fig.savefig(path, dpi=120, bbox_inches="tight")
+        face = FACES[name][0]
+        cx, cy = face.centroid
+        R = o["holm_radius"]
+        _gallery.contact_map(ax, ls, cs.rasterise(face, r.grid_spacing).mask, scale=MM, unit="mm",
+                             title=f"{name}: last stable contact, -d = {-ls.approach / MM:.3f} mm\n"
+                                   f"Holm radius {R / MM:.1f} mm")
+        ax.add_patch(plt.Circle((cx / MM, cy / MM), R / MM, fill=False, color="g"))
+        # show the whole Holm circle: it can reach beyond the face
+        x0, x1 = ax.get_xlim()
+        y0, y1 = ax.get_ylim()
+        pad = 0.5
+        ax.set_xlim(min(x0, (cx - R) / MM - pad), max(x1, (cx + R) / MM + pad))
+        ax.set_ylim(min(y0, (cy - R) / MM - pad), max(y1, (cy + R) / MM + pad))
+    holm = Line2D([], [], color="g", label="Holm radius: the circle of the face's computed stiffness (Eqs. 15-17)")
+    fig.legend(handles=_gallery.contact_handles([holm]), loc="outside lower center", fontsize=8, ncols=3)
+    if path is not None:
+        fig.savefig(path, dpi=120)
+    return fig
+
+
+def report(out: dict) -> None:
     for name, o in out.items():
         r = o["result"]
         maxima = ", ".join(f"{F * 1e3:.2f} mN at {d / MM:.3f} mm" for F, d in o["maxima"])
         print(f"{name:>12}: F_A = {r.pulloff_force * 1e3:.2f} mN at d = {r.pulloff_approach / MM:.3f} mm"
               f" (F/F_upper = {o['F_over_upper']:.3f}); maxima: {maxima}; Holm radius {o['holm_radius'] / MM:.2f} mm;"
               f" last stable: F/F_max = {o['last_force_over_max']:.3f}, area/incircle = {o['last_area_over_incircle']:.3f}")
+
+
+def main(path=None, resolution: float = 48) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    out = run(resolution)
+    plot(out, path or _gallery.picture_path("fig13_15_physical_units"))
+    report(out)
 
 
 if __name__ == "__main__":
