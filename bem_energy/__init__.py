@@ -11,8 +11,8 @@ from .settings import EnergySettings, ZeroRangeSettings
 from .solver import finite_range_grid, pull_off
 from .zero_range import richardson, zero_range
 
-__all__ = ["solve", "solve_with_resolution", "pull_off", "finite_range_grid", "zero_range", "richardson", "EnergySettings",
-           "ZeroRangeSettings", "Potential", "process_zone_length", "EnergyProblem", "build_problem",
+__all__ = ["solve", "solve_with_resolution", "pull_off", "finite_range_grid", "zero_range", "richardson",
+           "EnergySettings", "ZeroRangeSettings", "Potential", "process_zone_length", "EnergyProblem", "build_problem",
            "Minimum", "minimise"]
 
 

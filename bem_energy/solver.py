@@ -94,11 +94,14 @@ def finite_range_grid(scene: Scene, resolution: float | None = None) -> Grid:
     if side > MAX_DEFAULT_SIDE:
         lc_min = per * width / MAX_DEFAULT_SIDE
         rho_min = range_for_process_zone(modulus=E, work=potential.work, length=lc_min, exponent=k)
+        unit = 10.0 ** (math.floor(math.log10(rho_min)) - 2)
+        rho_min = math.ceil(rho_min / unit * (1 - 1e-12)) * unit      # three digits, rounded up: it fits
         raise SceneError("adhesion.range", (
             f"range {potential.range:g} gives a process zone l_c = {lc:.3g} ({lc / a:.3g} a); resolving it "
             f"({per:g} elements per l_c for the {potential.kind} potential) needs a {side} x {side} grid "
             f"({a / h:.0f} elements per radius), wider than the {MAX_DEFAULT_SIDE} a run picks by itself "
-            f"(an hour or more): use a range >= {rho_min:.3g} (l_c >= {lc_min / a:.3g} a), the zero-range limit (no range), "
+            f"(an hour or more): use a range >= {rho_min:.3g} (l_c >= {lc_min / a:.3g} a), "
+            "the zero-range limit (no range), "
             "or give --resolution (a grid too coarse for l_c is run but reported not converged)"))
     return Grid(spacing=h)
 

@@ -60,8 +60,10 @@ def test_a_range_too_short_to_resolve_is_refused_with_the_shortest_that_fits():
     msg = str(e.value)
     assert "1600 x 1600" in msg and "--resolution" in msg
     rho_min = float(msg.split("use a range >= ")[1].split(" ")[0])
-    h = be.finite_range_grid(kendall(rho_min * 1.001)).spacing_for(cs.Circle(1.0))
-    assert math.ceil(2.0 / h) <= be.solver.MAX_DEFAULT_SIDE < math.ceil(2.0 / (0.99 * h))
+    h = be.finite_range_grid(kendall(rho_min)).spacing_for(cs.Circle(1.0))
+    assert math.ceil(2.0 / h) <= be.solver.MAX_DEFAULT_SIDE
+    with pytest.raises(cs.SceneError, match="adhesion.range"):
+        be.finite_range_grid(kendall(0.99 * rho_min))
 
 
 def test_resolution_too_coarse_for_the_process_zone_is_not_converged():
