@@ -2,6 +2,8 @@
 (Eqs. 34, 38-39).  Tolerances are the issue's targets where the convergence study
 (benchmarks/study_fem.py) meets them, else the level that study reached (noted)."""
 
+import functools
+
 import numpy as np
 import pytest
 
@@ -15,17 +17,77 @@ def scene(material, radius=1.0, work=1.0):
     return cs.Scene(cs.Indenter(cs.Circle(radius)), material, cs.Adhesion(work))
 
 
-@pytest.mark.parametrize("nu,tol", [(0.3, 1e-5), (0.5, 3e-5)])
-def test_homogeneous_kendall(nu, tol):
-    mat = cs.Homogeneous(2.0, nu)
-    r = fr.solve(scene(mat, radius=0.7, work=0.3))
-    E = mat.effective_modulus
-    assert r.stiffness == pytest.approx(T.kendall_stiffness(E_star=E, radius=0.7), rel=tol)
-    assert r.pulloff_force == pytest.approx(T.kendall_adhesion_force(E_star=E, radius=0.7, work=0.3), rel=tol)
-    assert r.pulloff_approach == pytest.approx(T.kendall_critical_approach(E_star=E, radius=0.7, work=0.3), rel=tol)
-    # the a-posteriori estimate bounds the error it reports on
-    assert r.accuracy_estimate < tol
+QUANTITIES = ("stiffness", "pulloff_force", "pulloff_approach")
+
+
+def errors(r, mat, radius, work):
+    """Relative errors of K, F_A and d_c against Eqs. 1, 6, 4 (homogeneous) or 34, 39, 38."""
+    if isinstance(mat, cs.Homogeneous):
+        E = mat.effective_modulus
+        exact = (T.kendall_stiffness(E_star=E, radius=radius), T.kendall_adhesion_force(E_star=E, radius=radius, work=work),
+                 T.kendall_critical_approach(E_star=E, radius=radius, work=work))
+    else:
+        kw = dict(E0=mat.surface_modulus, c0=mat.reference_depth, k=mat.exponent, radius=radius)
+        exact = (T.graded_stiffness(**kw), T.graded_adhesion_force(**kw, work=work),
+                 T.graded_critical_approach(**kw, work=work))
+    return {q: abs(getattr(r, q) / x - 1) for q, x in zip(QUANTITIES, exact)}
+
+
+@functools.lru_cache(maxsize=None)
+def solved(material, grading, order=4, radius=0.7, work=0.3):
+    """A solve shared by the tests below (the same case is asked for by more than one)."""
+    return fr.solve(scene(material, radius=radius, work=work), fr.FemSettings(grading=grading, order=order))
+
+
+def homogeneous(nu):
+    """E* = 2 for every nu: the exact answers are the same numbers."""
+    return cs.Homogeneous(2.0 * (1 - nu**2), nu)
+
+
+@pytest.mark.parametrize("nu", [-0.5, 0.0, 0.2, 0.3, 0.45, 0.499, 0.5])
+def test_homogeneous_kendall_for_every_poisson_ratio(nu):
+    """Eqs. 1, 4, 6 for nu across (-1, 1/2], within the solver's own per-quantity error bounds;
+    at grading 2, the coarsest the homogeneous mesh allows, those bounds are below 1e-4 (the
+    measured errors: 1.9e-5 ... 2.5e-5 in K).  nu = 0 is where a mixed form carrying the
+    pressure as -lambda div u fails: lambda = 0 there, and dropping 1/lambda makes the body
+    incompressible (K = 2 x Eq. 1, seen with an estimate of 3e-5)."""
+    mat = homogeneous(nu)
+    r = solved(mat, 2.0)
+    err, est = errors(r, mat, 0.7, 0.3), r.info["error_estimates"]
+    for q in QUANTITIES:
+        assert err[q] <= est[q], (q, err[q], est[q])
+    assert r.accuracy_estimate == max(est.values()) < 1e-4
     assert r.info["stiffness_reaction"] == pytest.approx(r.stiffness, rel=1e-8)
+
+
+def test_homogeneous_kendall_at_the_default_grading():
+    """The issue's target, 1e-5, at the default grading (measured nu = 0.3: K 8.4e-6, F_A 4e-7,
+    d_c 7.9e-6)."""
+    mat = cs.Homogeneous(2.0, 0.3)
+    r = fr.solve(scene(mat, radius=0.7, work=0.3))
+    err = errors(r, mat, 0.7, 0.3)
+    assert max(err.values()) < 1e-5
+    assert all(err[q] <= r.info["error_estimates"][q] for q in QUANTITIES)
+
+
+# homogeneous nu and graded k, each at the grading a test can afford; the last runs degree 2,
+# whose estimate compares with degree 3 (the finer neighbour) instead of degree 3 with 2
+ESTIMATE_CASES = [(homogeneous(nu), 2.0, 4) for nu in (-0.5, 0.0, 0.3, 0.5)] + [
+    (cs.PowerLawGraded(1.5, 2.0, 0.5), 2.0, 4), (cs.PowerLawGraded(1.5, 2.0, 0.9), 4.0, 4), (homogeneous(0.3), 2.0, 2)]
+
+
+@pytest.mark.parametrize("material,grading,order", ESTIMATE_CASES,
+                         ids=["nu=-0.5", "nu=0", "nu=0.3", "nu=0.5", "k=0.5", "k=0.9 grading 4", "nu=0.3 degree 2"])
+def test_error_estimate_bounds_the_error_and_is_sharp(material, grading, order):
+    """accuracy_estimate (the largest per-quantity bound) lies between the true largest error
+    of K, F_A, d_c and ten times it; each bound covers its own quantity.  The degree-pair
+    factors come from benchmarks/study_fem.py (estimate / error 1.4 - 4.4 over its cases)."""
+    r = solved(material, grading, order)
+    err = errors(r, material, 0.7, 0.3)
+    for q in QUANTITIES:
+        assert err[q] <= r.info["error_estimates"][q], (q, err[q], r.info["error_estimates"][q])
+    worst = max(err.values())
+    assert worst <= r.accuracy_estimate <= 10 * worst, (err, r.accuracy_estimate)
 
 
 def test_incompressible_does_not_lock_and_converges():
@@ -60,6 +122,9 @@ def test_refuses_what_it_cannot_represent():
         fr.solve(cs.Scene(cs.Indenter(cs.Square(1.0)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0)))
     with pytest.raises(cs.SceneError, match="material.exponent"):
         fr.solve(scene(cs.PowerLawGraded(1.0, 1.0, -0.5)))
+    # the isotropic mesh leaves the punch edge unresolved beyond grading 2 (K 1.4e-2 off at 3)
+    with pytest.raises(cs.SceneError, match="fem.grading"):
+        fr.solve(scene(cs.Homogeneous(1.0, 0.3)), fr.FemSettings(grading=3.0))
 
 
 def test_fields_only_when_asked(tmp_path):
@@ -93,8 +158,8 @@ def test_stiffness_converges_at_the_rate_of_the_element_order():
 
 
 def test_graded_estimate_covers_the_error_at_the_coarsest_grading():
-    """At grading 4 (the coarsest allowed) the comparison mesh is the finer one; the estimate
-    must still cover the error (measured k = 0.75: error 1.24e-3, estimate 1.35e-3)."""
+    """At grading 4 (the coarsest allowed) the degree pair converges slowest (rho = 11/4 is
+    assumed); the estimate must still cover the error (measured k = 0.75: K error 1.24e-3)."""
     r = fr.solve(scene(cs.PowerLawGraded(1.0, 1.0, 0.75)), fr.FemSettings(grading=4.0))
     err = abs(r.stiffness / T.graded_stiffness(E0=1.0, c0=1.0, k=0.75, radius=1.0) - 1)
     assert 0 < err <= r.accuracy_estimate
