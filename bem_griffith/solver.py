@@ -75,6 +75,26 @@ def _estimate_memory_gb(nx: int, ny: int) -> float:
     return (padded * 8 * 3 + padded * 16 * 3 + windows + nx * ny * 8 * 12) / 1e9
 
 
+def max_elements_per_radius(scene: Scene, max_memory_gb: float | None = None) -> float:
+    """The finest grid (elements per equivalent radius) whose memory estimate fits in
+    ``max_memory_gb`` (default: :class:`Settings`' limit), from the face's bounding box."""
+    limit = Settings().max_memory_gb if max_memory_gb is None else max_memory_gb
+    shape = scene.indenter.shape
+    xmin, ymin, xmax, ymax = shape.bounds
+
+    def need(n: float) -> float:
+        h = shape.equivalent_radius / n
+        return _estimate_memory_gb(math.ceil((xmax - xmin) / h) + 2, math.ceil((ymax - ymin) / h) + 2)
+
+    lo, hi = 1.0, 2.0
+    while need(hi) <= limit:
+        lo, hi = hi, 2 * hi
+    for _ in range(40):                      # need(n) grows like n^2: bisect to a whole number
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if need(mid) <= limit else (lo, mid)
+    return math.floor(lo)
+
+
 def build_problem(scene: Scene, settings: Settings) -> Problem:
     mat = scene.material
     shape = scene.indenter.shape

@@ -23,8 +23,9 @@ class SceneError(ValueError):
 
 
 def _describe(lo, hi, lo_open, hi_open) -> str:
+    """The allowed values as a phrase that follows "must be (a number)": "in [0, 1)", "> 0"."""
     if lo is not None and hi is not None:
-        return f"{'(' if lo_open else '['}{lo:g}, {hi:g}{')' if hi_open else ']'}"
+        return f"in {'(' if lo_open else '['}{lo:g}, {hi:g}{')' if hi_open else ']'}"
     if lo is not None:
         return f"{'>' if lo_open else '>='} {lo:g}"
     if hi is not None:
@@ -45,7 +46,7 @@ def check_real(field: str, value, *, lo=None, hi=None, lo_open=False, hi_open=Fa
         or (hi is not None and (v >= hi if hi_open else v > hi))
     )
     if bad:
-        raise SceneError(field, f"must be in {allowed} (got {v:g})")
+        raise SceneError(field, f"must be {allowed} (got {v:g})")
     return v
 
 

@@ -183,7 +183,10 @@ def _profile_from_dict(d: dict):
 
 
 def _material_from_dict(d: dict):
-    model = d.get("model") if isinstance(d, dict) else None
+    if not isinstance(d, dict):
+        raise SceneError("material", f"must be a table, [material] with model = 'homogeneous' or 'power_law_graded' "
+                         f"and its moduli (got {d!r})")
+    model = d.get("model")
     if not isinstance(model, str):
         model = repr(model)
     if model == "homogeneous":

@@ -11,7 +11,7 @@ import click
 from contact_scene import SceneError, summarise
 
 from .jsonio import dumps as json_dumps
-from .methods import METHODS, get_method
+from .methods import METHODS, applicable_methods, get_method
 from .suite import BUILTIN, SUITE, load_scene_or_builtin as load_scene
 
 log = logging.getLogger("crossval")
@@ -37,12 +37,102 @@ def _fmt(v) -> str:
     return str(v)
 
 
+_SOLVER_LOGGERS = ("bem_griffith", "bem_energy", "fem_reference", "crossval")
+
+
+class _LiveStatus:
+    """What a long solve is doing, on stderr: a tqdm status line on a terminal (the solvers'
+    stage messages as its description, the latest point of the curve as its postfix), and with
+    ``-v`` elsewhere a plain log line at most every few seconds.  The libraries stay silent: they
+    only call the callback and log."""
+
+    def __init__(self, desc: str, *, every_s: float = 5.0):
+        from tqdm import tqdm
+
+        self.bar = tqdm(desc=desc, unit=" pts", disable=None, leave=False, file=sys.stderr)
+        self.desc = desc
+        self.every_s = every_s
+        self._last = 0.0
+        self._handler = None
+
+    def __enter__(self):
+        from tqdm.contrib.logging import logging_redirect_tqdm
+
+        if not self.bar.disable:
+            live = self
+
+            class Stage(logging.Handler):
+                def emit(self, record):
+                    try:
+                        live.bar.set_description(f"{live.desc}: {record.getMessage()[:70]}", refresh=True)
+                    except Exception:   # a malformed record must not disturb the solve it reports on
+                        pass
+            self._handler = Stage(logging.INFO)
+            for name in _SOLVER_LOGGERS:
+                lg = logging.getLogger(name)
+                lg.addHandler(self._handler)
+                if lg.getEffectiveLevel() > logging.INFO:
+                    lg.setLevel(logging.INFO)
+        root = logging.getLogger()
+        levels = [h.level for h in root.handlers]
+        self._redirect = logging_redirect_tqdm()
+        self._redirect.__enter__()
+        for h in root.handlers:             # tqdm's replacement handler does not keep the level
+            h.setLevel(max(levels, default=logging.WARNING))
+        return self
+
+    def point(self, method: str, approach: float, force: float, area: float) -> None:
+        import time
+
+        self.bar.update(1)
+        text = f"{method}: d = {approach:.5g}, F = {force:.5g}, contact area {area:.4g}"
+        self.bar.set_postfix_str(text, refresh=False)
+        now = time.monotonic()
+        if self.bar.disable and now - self._last >= self.every_s:
+            self._last = now
+            log.info("%s", text)
+
+    def __exit__(self, *exc):
+        self._redirect.__exit__(*exc)
+        if self._handler is not None:
+            for name in _SOLVER_LOGGERS:
+                logging.getLogger(name).removeHandler(self._handler)
+        self.bar.close()
+        return False
+
+
+def _version() -> str:
+    from .cache import package_version
+
+    return (f"adhesive-punch {package_version()}\n"
+            "Cite the package (CITATION.cff) and the method's source: V.L. Popov, R. Pohrt, Q. Li, "
+            "Strength of adhesive contacts: influence of contact geometry and material gradients, "
+            "Friction 5(3):308-325 (2017).")
+
+
+def _print_version(ctx, param, value):
+    if value and not ctx.resilient_parsing:
+        click.echo(_version())
+        ctx.exit()
+
+
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
-@click.option("-v", "--verbose", count=True, help="More log output (-v info, -vv debug).")
+@click.option("-v", "--verbose", count=True, help="More log output on stderr (-v: progress and stages, -vv: debug).")
+@click.option("--version", is_flag=True, expose_value=False, is_eager=True, callback=_print_version,
+              help="Print the package version and how to cite it, then exit.")
 def main(verbose):
-    """Adhesive punch detachment: solve scenes and cross-check methods against theory."""
-    logging.basicConfig(level=[logging.WARNING, logging.INFO, logging.DEBUG][min(verbose, 2)],
-                        format="%(levelname)s %(name)s: %(message)s")
+    """Adhesive punch detachment: solve scenes and cross-check methods against theory.
+
+    A scene FILE is a TOML scene file or the name of a built-in scene (crossval scene list)."""
+    handler = logging.StreamHandler(sys.stderr)
+    handler.setFormatter(logging.Formatter("%(levelname)s %(name)s: %(message)s"))
+    level = [logging.WARNING, logging.INFO, logging.DEBUG][min(verbose, 2)]
+    # the handler, not the loggers, decides what is printed: the live status line may raise a
+    # solver logger to INFO to read its stage messages without printing them
+    handler.setLevel(level)
+    root = logging.getLogger()
+    root.handlers[:] = [handler]
+    root.setLevel(level)
 
 
 @main.group()
@@ -98,9 +188,9 @@ def solve_cmd(file, method_name, resolution, range_, as_json):
     why_not = method.applies(sc)
     if why_not:
         raise SceneError("method", why_not)
-    if resolution is not None and not resolution > 0:
-        raise SceneError("resolution", f"must be > 0 (got {resolution:g})")
-    res = method.solve(sc, resolution=resolution)
+    method.check_resolution(sc, resolution, field="--resolution")
+    with _LiveStatus(f"{method.name} on {sc.name or file}") as live:
+        res = method.solve(sc, resolution=resolution, callback=lambda d, F, A: live.point(method.name, d, F, A))
     if as_json:
         click.echo(json_dumps(res.to_json()))
         return
@@ -129,9 +219,12 @@ def compare_cmd(file, resolution, quick, as_json):
     from .compare import compare
 
     sc = load_scene(file)
-    if resolution is not None and not resolution > 0:
-        raise SceneError("resolution", f"must be > 0 (got {resolution:g})")
-    cmp = compare(sc, resolution=resolution, resolutions={"bem_energy": 1.0} if quick else None)
+    for m in applicable_methods(sc):
+        if m.resolution_is_grid(sc):
+            m.check_resolution(sc, resolution, field="--resolution")
+    with _LiveStatus(f"compare {sc.name or file}") as live:
+        cmp = compare(sc, resolution=resolution, resolutions={"bem_energy": 1.0} if quick else None,
+                      point_callback=live.point)
     if as_json:
         click.echo(json_dumps({
             "scene": sc.name, "passed": cmp.passed, "theory": cmp.theory, "skipped": cmp.skipped,
@@ -176,8 +269,10 @@ def _progress(total: int, desc: str):
 
 @main.command("report")
 @click.option("--quick", is_flag=True, help="Coarse resolutions: under 3 minutes on 2 cores.")
-@click.option("--out", "out_dir", default="report", show_default=True, type=click.Path(file_okay=False))
-@click.option("--workers", type=int, default=None, help="Local processes (default: the machine's cores).")
+@click.option("--out", "out_dir", default="report", show_default=True, type=click.Path(file_okay=False),
+              help="Directory for index.html, results.json and the PNGs.")
+@click.option("--workers", type=click.IntRange(min=1), default=None,
+              help="Local processes (default: the machine's cores).")
 @click.option("--scheduler", default=None, help="dask.distributed scheduler address (instead of local processes).")
 @click.option("--no-cache", is_flag=True, help="Recompute everything (results are cached in .crossval-cache).")
 def report_cmd(quick, out_dir, workers, scheduler, no_cache):
@@ -188,8 +283,6 @@ def report_cmd(quick, out_dir, workers, scheduler, no_cache):
 
     from .report import FULL, QUICK, report
     from .runner import default_workers
-    from .suite import SUITE
-    from .methods import applicable_methods
 
     res = QUICK if quick else FULL
     total = sum(len(res[m.name]) for s in SUITE.values() for m in applicable_methods(s))
@@ -233,9 +326,12 @@ def regress_cmd(update, workers):
 @click.option("--method", "method_names", multiple=True, type=click.Choice(sorted(METHODS)),
               help="Method(s) to study (default: every one that applies).")
 @click.option("--resolutions", default=None, help="Comma-separated resolutions (default: each method's own set).")
-@click.option("--quantity", default="pulloff_force", type=click.Choice(["pulloff_force", "pulloff_approach", "stiffness"]))
-@click.option("--workers", type=int, default=1)
-@click.option("--json", "as_json", is_flag=True)
+@click.option("--quantity", default="pulloff_force", show_default=True,
+              type=click.Choice(["pulloff_force", "pulloff_approach", "stiffness"]),
+              help="Which result to measure the error of.")
+@click.option("--workers", type=click.IntRange(min=1), default=1, show_default=True,
+              help="Local processes to spread the runs over.")
+@click.option("--json", "as_json", is_flag=True, help="Print the study as JSON.")
 @_scene_errors_exit_2
 def study_cmd(file, method_names, resolutions, quantity, workers, as_json):
     """Error against resolution and wall time, with fitted convergence rates."""
@@ -252,13 +348,13 @@ def study_cmd(file, method_names, resolutions, quantity, workers, as_json):
             vals = tuple(float(v) for v in resolutions.split(","))
         except ValueError:
             raise SceneError("resolutions", f"must be comma-separated numbers (got {resolutions!r})") from None
-        if not all(v > 0 for v in vals):
-            raise SceneError("resolutions", "must all be > 0")
-        res = {m: vals for m in (method_names or METHODS)}
+        res = {m: vals for m in (method_names or [m.name for m in applicable_methods(sc)])}
+        for m in res:
+            for v in vals:
+                METHODS[m].check_resolution(sc, v, field="--resolutions")
     from tqdm.contrib.logging import logging_redirect_tqdm
 
     from .study import DEFAULT_RESOLUTIONS
-    from .methods import applicable_methods
 
     names = list(method_names) or [m.name for m in applicable_methods(sc)]
     bar, cb = _progress(sum(len((res or DEFAULT_RESOLUTIONS)[m]) for m in names), "study")

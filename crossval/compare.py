@@ -196,12 +196,14 @@ def check_results(scene: cs.Scene, results: dict) -> tuple[Check, ...]:
 
 
 def compare(scene: cs.Scene, *, methods=None, resolution: float | None = None, resolutions: dict | None = None,
-            callback=None) -> Comparison:
+            callback=None, point_callback=None) -> Comparison:
     """Solve ``scene`` with every applicable method (or those named) and check the results.
 
     ``resolution`` is the grid methods' elements per radius; the others run their defaults
     unless ``resolutions`` names a method's own resolution (e.g. ``{"bem_energy": 1.0}``: the
-    energy method's coarse zero-range sequence, seconds instead of minutes)."""
+    energy method's coarse zero-range sequence, seconds instead of minutes).
+    ``callback(method, result)`` follows each method; ``point_callback(method, approach, force,
+    contact_area)`` each point of a solver's curve as it is computed (progress)."""
     chosen = applicable_methods(scene) if methods is None else [METHODS[m] for m in methods]
     skipped = {m.name: m.applies(scene) for m in METHODS.values() if m.applies(scene)}
     own = dict(resolutions or {})
@@ -211,7 +213,8 @@ def compare(scene: cs.Scene, *, methods=None, resolution: float | None = None, r
     results = {}
     for m in chosen:
         res = own[m.name] if m.name in own else (resolution if m.resolution_is_grid(scene) else None)
-        r = m.solve(scene, resolution=res)
+        cb = None if point_callback is None else (lambda d, F, A, _m=m.name: point_callback(_m, d, F, A))
+        r = m.solve(scene, resolution=res, callback=cb)
         results[m.name] = r
         if callback is not None:
             callback(m.name, r)

@@ -6,6 +6,7 @@ solver, and a scene only runs through the methods that can represent it.
 from __future__ import annotations
 
 import importlib
+import math
 from dataclasses import dataclass
 from typing import Callable
 
@@ -24,6 +25,52 @@ class Method:
     #: the others are zero-range (Griffith) methods and would silently ignore it
     uses_range: bool = False
 
+    def resolution_meaning(self, scene: Scene) -> str:
+        """What ``resolution`` (``--resolution``) means for this method on this scene."""
+        if self.name == "fem_reference":
+            return "mesh refinement 1/grading (elements grow by at most 1/resolution x their distance from the punch edge)"
+        if not self.resolution_is_grid(scene):
+            return "elements per process zone l_c of each range of the zero-range sequence"
+        return "elements per equivalent radius sqrt(A/pi)"
+
+    def resolution_range(self, scene: Scene) -> tuple[float, float]:
+        """The resolutions this method accepts for ``scene`` (the bounds its settings enforce,
+        expressed as ``resolution``)."""
+        if self.name == "fem_reference":
+            return 1 / 4.0, 1 / 0.05                      # FemSettings.grading in [0.05, 4]
+        if not self.resolution_is_grid(scene):
+            return 0.25, 64.0                             # ZeroRangeSettings.elements_per_process_zone
+        from contact_scene.raster import MIN_INCIRCLE_CELLS
+
+        shape = scene.indenter.shape
+        lo = MIN_INCIRCLE_CELLS * shape.equivalent_radius / (2 * shape.incircle().radius)
+        if self.name == "bem_griffith":
+            from bem_griffith.solver import max_elements_per_radius
+
+            return lo, float(max_elements_per_radius(scene))
+        return lo, math.inf
+
+    def check_resolution(self, scene: Scene, resolution: float | None, *, field: str = "resolution") -> None:
+        """Raise SceneError, in terms of ``resolution``, if the method cannot run at it."""
+        if resolution is None:
+            return
+        if isinstance(resolution, bool) or not isinstance(resolution, (int, float)):
+            raise SceneError(field, f"must be a number > 0 (got {resolution!r})")
+        if not (math.isfinite(resolution) and resolution > 0):
+            raise SceneError(field, f"must be a number > 0 (got {resolution:g})")
+        lo, hi = self.resolution_range(scene)
+        if lo <= resolution <= hi:
+            return
+        what = self.resolution_meaning(scene)
+        limits = f"from {_nice(lo, up=True)} to {_nice(hi, up=False)}" if math.isfinite(hi) else \
+            f"{_nice(lo, up=True)} or more"
+        why = ""
+        if self.name == "bem_griffith" and resolution > hi:
+            why = " (a finer grid needs more than the solver's memory limit)"
+        elif resolution < lo and self.resolution_is_grid(scene) and self.name != "fem_reference":
+            why = " (coarser grids put fewer than 4 elements across the face's incircle)"
+        raise SceneError(field, f"{self.name} takes {limits} here{why}; it means {what} (got {resolution:g})")
+
     def resolution_is_grid(self, scene: Scene) -> bool:
         """Whether ``resolution`` means BEM elements per radius for this scene (the FEM's is
         a mesh grading, the zero-range energy method's elements per process zone)."""
@@ -34,8 +81,17 @@ class Method:
         return True
 
     def solve(self, scene: Scene, *, resolution: float | None = None, callback=None):
+        self.check_resolution(scene, resolution)
         mod = importlib.import_module(self.module)
         return mod.solve_with_resolution(scene, resolution, callback=callback)
+
+
+def _nice(x: float, *, up: bool) -> str:
+    """A bound as a user would type it: rounded inward to 2 significant digits."""
+    if x == 0 or not math.isfinite(x):
+        return f"{x:g}"
+    scale = 10 ** (math.floor(math.log10(abs(x))) - 1)
+    return f"{(math.ceil(x / scale) if up else math.floor(x / scale)) * scale:g}"
 
 
 def _griffith_applies(scene: Scene) -> str | None:

@@ -34,11 +34,17 @@ def reference(scene_or_name, *, resolution: float = 64) -> Reference:
     return Reference(scene, r, force_tolerance(scene, method, r))
 
 
+_SIGNS = ("this package's convention is F < 0 in tension and d < 0 when pulled (the pull-off force is the "
+          "magnitude of the most tensile F); if your code counts tension positive, pass curve=(-d, -F)")
+
+
 def _from_curve(approach, force):
     d = np.asarray(approach, float)
     F = np.asarray(force, float)
     if d.ndim != 1 or d.shape != F.shape or len(d) < 2:
         raise ValueError("curve must be two 1-D arrays of equal length >= 2 (approach, force)")
+    if not np.any(F < 0):
+        raise AssertionError(f"the curve has no tensile force (no F < 0): {_SIGNS}")
     i = int(np.argmax(-F))
     j = int(np.flatnonzero(d != d[0])[0]) if np.any(d != d[0]) else 1
     return float(-F[i]), float(d[i]), float((F[j] - F[0]) / (d[j] - d[0]))
@@ -49,6 +55,9 @@ def assert_matches_reference(ref: Reference, *, pulloff_force=None, pulloff_appr
     """Raise AssertionError naming every quantity that differs from the reference by more than
     the reference's own accuracy plus ``rtol``.  A ``curve`` (approach, force) is reduced to its
     largest tensile force, the approach there, and the slope of its first segment."""
+    __tracebackhide__ = True    # pytest shows the message, not this function's body
+    if pulloff_force is not None and pulloff_force < 0:
+        raise AssertionError(f"pulloff_force = {pulloff_force:.6g} is negative; it is a magnitude: {_SIGNS}")
     if curve is not None:
         f, d, k = _from_curve(*curve)
         pulloff_force = f if pulloff_force is None else pulloff_force

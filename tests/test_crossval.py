@@ -58,6 +58,32 @@ def test_assert_matches_reference_accepts_kendall_and_names_a_mismatch():
     crossval.assert_matches_reference(ref, curve=(d, F))
     with pytest.raises(AssertionError, match=r"pulloff_force: .* \+2\.000%"):
         crossval.assert_matches_reference(ref, pulloff_force=1.02 * FK)
+    # tension counted positive: a hint about the convention, not "-100 %"
+    for wrong in (dict(curve=(-d, -F)), dict(pulloff_force=-FK)):
+        with pytest.raises(AssertionError, match=r"convention is F < 0 in tension") as info:
+            crossval.assert_matches_reference(ref, **wrong)
+        assert "-100" not in str(info.value)
+
+
+def test_plugin_failure_shows_the_message_not_the_library(pytester):
+    pytester.makepyfile("""
+        import crossval
+
+        def test_x(adhesion_reference):
+            ref = adhesion_reference("incompressible_circle")
+            crossval.assert_matches_reference(ref, pulloff_force=1.05 * ref.result.pulloff_force)
+    """)
+    res = pytester.runpytest()
+    res.assert_outcomes(failed=1)
+    text = res.stdout.str()
+    assert "+5.000%" in text and "bad.append" not in text and "__tracebackhide__" not in text
+
+
+def test_reference_takes_a_scene_file_path():
+    from crossval.suite import SCENE_DIR
+
+    by_path = crossval.reference(SCENE_DIR / "incompressible_circle.toml")
+    assert by_path.result.pulloff_force == crossval.reference("incompressible_circle").result.pulloff_force
 
 
 def test_plugin_fixture_is_registered(pytester):
@@ -67,6 +93,25 @@ def test_plugin_fixture_is_registered(pytester):
             assert ref.result.method == "fem_reference"
     """)
     pytester.runpytest().assert_outcomes(passed=1)   # registered through the pytest11 entry point
+
+
+def test_cli_version_help_and_module_entry():
+    """Every option says what it does; --version names the package; python -m crossval works."""
+    import click
+
+    from crossval.cli import main
+
+    def walk(cmd, path):
+        yield path, cmd
+        for name, sub in getattr(cmd, "commands", {}).items():
+            yield from walk(sub, f"{path} {name}")
+    for path, cmd in walk(main, "crossval"):
+        assert cmd.help, f"{path} has no help"
+        for p in cmd.params:
+            if isinstance(p, click.Option):
+                assert p.help, f"{path} {p.opts[0]} has no help text"
+    r = subprocess.run([sys.executable, "-m", "crossval", "--version"], capture_output=True, text=True)
+    assert r.returncode == 0 and r.stdout.startswith("adhesive-punch ") and "Friction 5(3)" in r.stdout
 
 
 def test_study_cli_reports_rates_and_reference():

@@ -48,7 +48,8 @@ def test_shipped_scenes_load_and_bounds_are_ordered(path):
 
 
 BAD = [
-    ("material.youngs_modulus", -1.0, "material.youngs_modulus: must be in > 0"),
+    ("material.youngs_modulus", -1.0, r"material.youngs_modulus: must be > 0 \(got -1\)"),
+    ("material", "rubber", r"material: must be a table, \[material\] with model = 'homogeneous'.*\(got 'rubber'\)"),
     ("material.youngs_modulus", 0.0, "material.youngs_modulus"),
     ("material.youngs_modulus", "soft", "must be a number"),
     ("material.poisson_ratio", 0.7, r"material.poisson_ratio: must be in \(-1, 0.5\]"),
@@ -192,9 +193,54 @@ def test_cli_refuses_range_for_zero_range_methods(method):
     assert r.stderr.startswith("error: --range:") and "bem_energy" in r.stderr
 
 
+@pytest.mark.parametrize("method,resolution,says", [
+    ("fem_reference", "100000", "--resolution: fem_reference takes from 0.25 to 20 here; it means mesh refinement"),
+    ("bem_griffith", "3000", "--resolution: bem_griffith takes from 2 to 1900 here (a finer grid needs more than the "
+                             "solver's memory limit)"),
+    ("bem_griffith", "1.5", "--resolution: bem_griffith takes from 2 to 1900 here (coarser grids put fewer than 4"),
+    ("bem_energy", "100", "--resolution: bem_energy takes from 0.25 to 64 here; it means elements per process zone"),
+    ("bem_griffith", "0", "--resolution: must be a number > 0 (got 0)"),
+])
+def test_cli_resolution_errors_speak_of_the_option(method, resolution, says):
+    """Out-of-range resolutions are refused before any work, in terms of what the user typed:
+    no internal settings (fem.grading, max_memory_gb, grid.spacing) the CLI cannot set."""
+    r = _cli("solve", "kendall_circle", "--method", method, "--resolution", resolution)
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert r.stderr.startswith(f"error: {says}"), r.stderr
+    for internal in ("fem.grading", "max_memory_gb", "spacing", "settings."):
+        assert internal not in r.stderr
+
+
+def test_resolution_limits_are_the_solvers_own():
+    """The advertised range is what the solvers accept: just inside it they run (or set up),
+    just outside they refuse on their own."""
+    import bem_griffith as bg
+    import fem_reference as fr
+    from crossval.methods import METHODS
+
+    sc = cs.load_scene(SCENE_DIR / "square.toml")
+    lo, hi = METHODS["bem_griffith"].resolution_range(sc)
+    bg.solver.build_problem(sc, bg.Settings(grid=cs.Grid(elements_per_radius=lo * 1.001)))
+    with pytest.raises(cs.SceneError, match="too coarse"):
+        bg.solver.build_problem(sc, bg.Settings(grid=cs.Grid(elements_per_radius=lo * 0.99)))
+    # the finest grid for a memory limit: 10 % inside it the solver sets up, 10 % beyond it refuses
+    n_max = bg.solver.max_elements_per_radius(sc, max_memory_gb=0.05)
+    small = dict(max_memory_gb=0.05)
+    bg.solver.build_problem(sc, bg.Settings(grid=cs.Grid(elements_per_radius=0.9 * n_max), **small))
+    with pytest.raises(cs.SceneError, match="max_memory_gb"):
+        bg.solver.build_problem(sc, bg.Settings(grid=cs.Grid(elements_per_radius=1.1 * n_max), **small))
+    assert hi == bg.solver.max_elements_per_radius(sc)          # the default limit's
+    lo, hi = METHODS["fem_reference"].resolution_range(cs.load_scene(SCENE_DIR / "kendall_circle.toml"))
+    fr.FemSettings(grading=1 / lo)
+    fr.FemSettings(grading=1 / hi)
+    for outside in (lo * 0.99, hi * 1.01):
+        with pytest.raises(cs.SceneError, match="fem.grading"):
+            fr.FemSettings(grading=1 / outside)
+
+
 def test_cli_solve_refuses_bad_resolution_and_unknown_method():
     r = _cli("solve", str(SCENE_DIR / "kendall_circle.toml"), "--method", "bem_griffith", "--resolution", "1")
-    assert r.returncode == 2 and "too coarse" in r.stderr and "Traceback" not in r.stderr
+    assert r.returncode == 2 and "coarser grids put fewer than 4" in r.stderr and "Traceback" not in r.stderr
     r = _cli("solve", str(SCENE_DIR / "kendall_circle.toml"), "--method", "magic")
     assert r.returncode == 2 and "Traceback" not in r.stderr
 
