@@ -37,7 +37,10 @@ class Method:
         """The resolutions this method accepts for ``scene`` (the bounds its settings enforce,
         expressed as ``resolution``)."""
         if self.name == "fem_reference":
-            return 1 / 4.0, 1 / 0.05                      # FemSettings.grading in [0.05, 4]
+            from fem_reference.solver import MAX_ISOTROPIC_GRADING
+
+            graded = getattr(scene.material, "exponent", 0.0) > 0    # the tensor mesh (fem_reference.model)
+            return 1 / (4.0 if graded else MAX_ISOTROPIC_GRADING), 1 / 0.05   # FemSettings.grading in [0.05, 4]
         if not self.resolution_is_grid(scene):
             return 0.25, 64.0                             # ZeroRangeSettings.elements_per_process_zone
         from contact_scene.raster import MIN_INCIRCLE_CELLS

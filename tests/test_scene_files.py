@@ -194,7 +194,7 @@ def test_cli_refuses_range_for_zero_range_methods(method):
 
 
 @pytest.mark.parametrize("method,resolution,says", [
-    ("fem_reference", "100000", "--resolution: fem_reference takes from 0.25 to 20 here; it means mesh refinement"),
+    ("fem_reference", "100000", "--resolution: fem_reference takes from 0.5 to 20 here; it means mesh refinement"),
     ("bem_griffith", "3000", "--resolution: bem_griffith takes from 2 to 1900 here (a finer grid needs more than the "
                              "solver's memory limit)"),
     ("bem_griffith", "1.5", "--resolution: bem_griffith takes from 2 to 1900 here (coarser grids put fewer than 4"),
@@ -231,11 +231,14 @@ def test_resolution_limits_are_the_solvers_own():
         bg.solver.build_problem(sc, bg.Settings(grid=cs.Grid(elements_per_radius=1.1 * n_max), **small))
     assert hi == bg.solver.max_elements_per_radius(sc)          # the default limit's
     lo, hi = METHODS["fem_reference"].resolution_range(cs.load_scene(SCENE_DIR / "kendall_circle.toml"))
-    fr.FemSettings(grading=1 / lo)
     fr.FemSettings(grading=1 / hi)
-    for outside in (lo * 0.99, hi * 1.01):
-        with pytest.raises(cs.SceneError, match="fem.grading"):
-            fr.FemSettings(grading=1 / outside)
+    with pytest.raises(cs.SceneError, match="fem.grading"):
+        fr.FemSettings(grading=1 / (hi * 1.01))
+    # the coarsest advertised mesh is built; a coarser one is refused by the solver itself
+    from fem_reference.model import Material
+    fr.solver.build(Material(0.0, 0.3), fr.FemSettings(grading=1 / lo))
+    with pytest.raises(cs.SceneError, match="fem.grading"):
+        fr.solver.build(Material(0.0, 0.3), fr.FemSettings(grading=1 / (lo * 0.99)))
 
 
 def test_cli_solve_refuses_bad_resolution_and_unknown_method():
