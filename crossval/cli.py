@@ -168,11 +168,14 @@ def scene_check(file, as_json):
 @click.argument("file", type=click.Path(dir_okay=False))
 @click.option("--method", "method_name", required=True, type=click.Choice(sorted(METHODS)), help="Which solver.")
 @click.option("--resolution", type=float, default=None,
-              help="BEM: elements across the equivalent radius sqrt(A/pi); bem_energy in the zero-range "
-                   "limit: elements per process zone; FEM: 1/grading. Default: the method's own.")
+              help="bem_griffith, and bem_energy at a finite range: elements across the equivalent radius "
+                   "sqrt(A/pi) (bem_energy's default resolves the process zone: 2 elements per l_c with the "
+                   "exponential potential); bem_energy in the zero-range limit: elements per process zone; "
+                   "fem_reference: 1/grading. Default: the method's own.")
 @click.option("--range", "range_", type=float, default=None,
-              help="Interaction range of the adhesive potential (bem_energy): run this finite range "
-                   "instead of the zero-range limit.")
+              help="Interaction range rho of the adhesive potential (bem_energy only): run this finite range "
+                   "instead of the zero-range limit. Its process zone l_c = E* rho^2 / w is resolved by default; "
+                   "a range whose grid would exceed 1024 cells across is refused, naming the shortest that fits.")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON (fixed keys for every method).")
 @_scene_errors_exit_2
 def solve_cmd(file, method_name, resolution, range_, as_json):
