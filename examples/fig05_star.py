@@ -8,7 +8,7 @@ short strips (Figs. 10-11), so its last stable force is 2.2-2.5 times the lower 
 the paper (face grey, remaining contact black) and a 3-D view of the surface half-way through
 the detachment.
 
-    python examples/fig05_star.py        # full version, writes fig05_star.png
+    python examples/fig05_star.py        # full version, writes docs/gallery/fig05_star.png
     from examples.fig05_star import run  # short version (used by the tests)
 """
 from __future__ import annotations
@@ -19,6 +19,11 @@ import numpy as np
 
 import contact_scene as cs
 from contact_scene import theory as T
+
+try:                                    # imported as examples.<name> (tests) or run as a script
+    from examples import _gallery
+except ImportError:
+    import _gallery
 
 STAR = cs.Star(5, 1.0, 0.45)
 #: Fig. 6's "complicated shapes": a cross and an irregular concave polygon
@@ -76,33 +81,69 @@ def _face_mask(result, shape=STAR):
     return rasterise(shape, result.grid_spacing).mask
 
 
-def main(path: str = "fig05_star.png") -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
+def plot(outs: dict, path=None):
+    """``outs``: {"star": run(fields=True), "cross": run(shape=CROSS), "irregular": run(shape=IRREGULAR)}
+    (any of the last two may be left out).  Top: the star when its first cells go, half-way, in
+    its last stable state, and the surface half-way in 3-D; bottom: first loss and last stable
+    state of the other two faces.  The first cells lost are a few cells at the tips: circled."""
     import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
 
-    from crossval.plotting import plot_contact, plot_surface
+    from crossval.plotting import plot_surface
 
-    out = run(resolution=48, fields=True)
-    others = {name: run(resolution=48, shape=shape) for name, shape in (("cross", CROSS), ("irregular", IRREGULAR))}
-    face = _face_mask(out["result"])
-    fig = plt.figure(figsize=(14, 7.2))
-    for i, s in enumerate([*out["snapshots"], out["result"].last_stable]):
-        plot_contact(s, fig.add_subplot(2, 4, i + 1), face=face)
-    plot_surface(out["mid"], fig.add_subplot(2, 4, 4, projection="3d"), stride=2)
+    fig = plt.figure(figsize=(14, 7.8), layout="constrained")
+
+    def first_loss(ax, s, face, name):
+        _gallery.contact_map(ax, s, face, title=f"{name}: first cells lost (circled)\nd = {s.approach:.3f}")
+        X, Y = s.centres()
+        lost = face & ~s.contact
+        ax.plot(X[lost], Y[lost], "o", mfc="none", mec="r", ms=9, mew=1.2, clip_on=False)
+
+    star = outs["star"]
+    face = _face_mask(star["result"])
+    first_loss(fig.add_subplot(2, 4, 1), star["snapshots"][0], face, "star")
+    for i, (s, what) in enumerate(((star["snapshots"][1], "half-way"), (star["result"].last_stable, "last stable state"))):
+        _gallery.contact_map(fig.add_subplot(2, 4, i + 2), s, face, title=f"star: {what}\nd = {s.approach:.3f}")
+    ax3 = fig.add_subplot(2, 4, 4, projection="3d")
+    plot_surface(star["mid"], ax3, stride=2)
+    ax3.set_title(f"star half-way: surface -u\n(dark: in contact), d = {star['mid'].approach:.3f}", fontsize=9)
+    ax3.set_zlabel("-u")
+    ax3.set_box_aspect(None, zoom=0.85)
     col = 5
-    for (name, o), shape in zip(others.items(), (CROSS, IRREGULAR)):
+    for name, shape in (("cross", CROSS), ("irregular", IRREGULAR)):
+        if name not in outs:
+            continue
+        o = outs[name]
         f = _face_mask(o["result"], shape)
-        plot_contact(o["snapshots"][0], fig.add_subplot(2, 4, col), face=f)
-        plot_contact(o["result"].last_stable, fig.add_subplot(2, 4, col + 1), face=f)
+        first_loss(fig.add_subplot(2, 4, col), o["snapshots"][0], f, name)
+        ls = o["result"].last_stable
+        _gallery.contact_map(fig.add_subplot(2, 4, col + 1), ls, f, title=f"{name}: last stable state\nd = {ls.approach:.3f}")
         col += 2
-    fig.savefig(path, dpi=120, bbox_inches="tight")
-    for name, o in {"star": out, **others}.items():
+    lost = Line2D([], [], ls="none", marker="o", mfc="none", mec="r", ms=9, label="first cells lost")
+    fig.legend(handles=_gallery.contact_handles([lost]), loc="outside lower center", fontsize=8, ncols=3)
+    fig.suptitle("Figs. 5-6: contact (black) on the face (grey); lengths in units of the star's tip radius,"
+                 " approach d in sqrt(w R / E*)", fontsize=10)
+    if path is not None:
+        fig.savefig(path, dpi=120)
+    return fig
+
+
+def report(outs: dict) -> None:
+    for name, o in outs.items():
         d, F = o["last_stable_normalised"]
         print(f"{name}: first cells lost at r >= {o['first_lost_radius']:.3f} (farthest vertex at {o['tip_radius']:.3f}), "
               f"within {o['first_lost_to_corner']:.2f} cells of a convex corner; last stable state at "
               f"d/d_lower = {d:.3f}, F/F_lower = {F:.3f}, area / incircle area = {o['last_area_over_incircle']:.3f}")
+
+
+def main(path=None) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    outs = {"star": run(resolution=48, fields=True),
+            **{name: run(resolution=48, shape=shape) for name, shape in (("cross", CROSS), ("irregular", IRREGULAR))}}
+    plot(outs, path or _gallery.picture_path("fig05_star"))
+    report(outs)
 
 
 if __name__ == "__main__":
