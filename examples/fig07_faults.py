@@ -4,13 +4,18 @@ the plain square, with a force scaled by the square root of the filling factor (
 The filling factor phi is the face area over the nominal (uncut) square.  Eq. 24 replaces w
 by phi w in the upper bound, so F_max / F_max(plain square) should be close to sqrt(phi).
 
-    python examples/fig07_faults.py        # full version, writes fig07_faults.png
+    python examples/fig07_faults.py        # full version, writes docs/gallery/fig07_faults.png
     from examples.fig07_faults import run  # short version (used by the tests)
 """
 from __future__ import annotations
 
 import contact_scene as cs
 from contact_scene import theory as T
+
+try:                                    # imported as examples.<name> (tests) or run as a script
+    from examples import _gallery
+except ImportError:
+    import _gallery
 
 FAULTS = {
     "plain": dict(),
@@ -40,26 +45,51 @@ def run(cells_per_side: int = 40) -> dict:
     return out
 
 
-def main(path: str = "fig07_faults.png") -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
+def plot(out: dict, path=None):
+    """The force-approach curves of the faces, and each face's last stable contact."""
     import matplotlib.pyplot as plt
+    from matplotlib.patches import Patch
+    from matplotlib.ticker import MaxNLocator
 
-    from crossval.plotting import plot_contact, plot_curve
-
-    out = run(cells_per_side=96)
-    fig, axs = plt.subplots(1, len(out) + 1, figsize=(3.2 * (len(out) + 1), 3.2))
+    ncols = 3
+    nrows = -(-(len(out) + 1) // ncols)
+    fig, axs = plt.subplots(nrows, ncols, figsize=(4.0 * ncols, 3.9 * nrows), layout="constrained")
+    axs = axs.ravel()
     for ax, (name, o) in zip(axs[1:], out.items()):
-        plot_contact(o["result"].last_stable, ax)
-        ax.set_title(f"{name}\nphi = {o['phi']:.3f}", fontsize=8)
+        r = o["result"]
+        face = cs.rasterise(cs.SquareWithFaults(side=1.0, **FAULTS[name]), r.grid_spacing).mask
+        _gallery.contact_map(ax, r.last_stable, face,
+                             title=f"{name}: last stable contact\nphi = {o['phi']:.3f}, "
+                                   f"F_A / (F_A,plain sqrt(phi)) = {o['F_over_plain'] / o['sqrt_phi']:.3f}")
+    for ax in axs[len(out) + 1:]:
+        ax.set_visible(False)
     for name, o in out.items():
-        plot_curve(o["result"], axs[0], label=name)
-    axs[0].legend(fontsize=6)
-    fig.savefig(path, dpi=120, bbox_inches="tight")
+        axs[0].plot(o["result"].curve.approach, o["result"].curve.force, label=name)
+    axs[0].set_xlabel("approach d")
+    axs[0].set_ylabel("force F")
+    axs[0].set_title("force against approach\n(square of side 1, E* = w = 1)", fontsize=9)
+    axs[0].legend(fontsize=7, loc="lower right")
+    axs[0].xaxis.set_major_locator(MaxNLocator(5))
+    cuts = Patch(facecolor="white", edgecolor="0.5", lw=0.5, label="not part of the face (notch, cuts)")
+    fig.legend(handles=_gallery.contact_handles([cuts]), loc="outside lower center", fontsize=8, ncols=3)
+    if path is not None:
+        fig.savefig(path, dpi=120)
+    return fig
+
+
+def report(out: dict) -> None:
     for name, o in out.items():
         print(f"{name:>16}: phi = {o['phi']:.4f}  F/F_plain = {o['F_over_plain']:.4f}  sqrt(phi) = {o['sqrt_phi']:.4f}"
               f"  ratio = {o['F_over_plain'] / o['sqrt_phi']:.4f}  F/F_upper(phi) = {o['F_over_upper']:.4f}")
+
+
+def main(path=None) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    out = run(cells_per_side=96)
+    plot(out, path or _gallery.picture_path("fig07_faults"))
+    report(out)
 
 
 if __name__ == "__main__":

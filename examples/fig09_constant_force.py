@@ -10,7 +10,7 @@ The level of the plateau is not F0: Eq. 28 takes the stiffness of the full disc 
 while the star's stiffness grows more slowly with a (thin rays add little), and
 F = K d with d^2 = 4 pi w a phi / K'(a) rises when K' falls.
 
-    python examples/fig09_constant_force.py        # full version, writes fig09_constant_force.png
+    python examples/fig09_constant_force.py        # full version, writes docs/gallery/fig09_constant_force.png
     from examples.fig09_constant_force import run  # short version (used by the tests)
 """
 from __future__ import annotations
@@ -20,6 +20,11 @@ import math
 import numpy as np
 
 import contact_scene as cs
+
+try:                                    # imported as examples.<name> (tests) or run as a script
+    from examples import _gallery
+except ImportError:
+    import _gallery
 
 R0 = 0.5                     # core radius; the rays follow Eq. 29 out to OUTER
 
@@ -51,33 +56,52 @@ def contact_radius(area):
     return 2 * math.pi * R0**3 / np.maximum(3 * math.pi * R0**2 - np.asarray(area), 1e-300)
 
 
-def main(path: str = "fig09_constant_force.png", resolution: float = 48) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
+def plot(out: dict, path=None):
+    """The last stable contact, the force curve, and the force against the contact's outer radius."""
     import matplotlib.pyplot as plt
 
-    from crossval.plotting import plot_contact
-
-    out = run(resolution)
     r = out["result"]
-    fig, axs = plt.subplots(1, 3, figsize=(11, 3.8), layout="constrained")
-    plot_contact(r.last_stable, axs[0], face=cs.rasterise(out["shape"], r.grid_spacing).mask)
-    axs[0].set_title("last stable contact", fontsize=8)
+    fig, axs = plt.subplots(1, 3, figsize=(12, 4.0), layout="constrained")
+    _gallery.contact_map(axs[0], r.last_stable, cs.rasterise(out["shape"], r.grid_spacing).mask,
+                         title=f"last stable contact (core radius r0 = {R0:g})")
+    _gallery.contact_legend(axs[0], loc="lower left", fontsize=6, framealpha=0.9)
     c = r.curve
-    axs[1].plot(-c.approach, -c.force / out["F0"])
-    axs[1].set_xlabel("-d")
-    axs[1].set_ylabel("-F / F0")
-    axs[2].plot(out["radius"], out["force"], ".")
+    axs[1].plot(-c.approach, -c.force / out["F0"], label="BEM (Griffith)")
+    a = contact_radius(c.contact_area)
+    pulling = np.arange(len(a)) >= int(np.argmax(c.contact_area < c.contact_area[0]))
+    inside = pulling & (a >= out["radius"].min()) & (a <= out["radius"].max())      # the points of the right panel
+    axs[1].plot(-c.approach[inside], -c.force[inside] / out["F0"], ".", ms=3, color="C1",
+                label=f"right panel: a = {out['radius'].min():.2f} ... {out['radius'].max():.2f}")
+    axs[1].set_xlabel("pull-off distance -d")
+    axs[1].set_ylabel("-F / F0,  F0 = sqrt(8 pi E* w r0^3)  (Eq. 29)")
+    axs[1].set_title("force against pull-off distance (E* = w = 1)", fontsize=9)
+    axs[1].legend(fontsize=7, loc="lower center")
+    axs[2].plot(out["radius"], out["force"], ".", color="C1", label="BEM, detachment under way")
     a = np.linspace(out["radius"].min(), out["radius"].max(), 50)
-    axs[2].plot(a, out["plateau_level"] * (a / a[0]) ** 1.5, "--", label="a full disc: ~ a^(3/2)")
-    axs[2].set_xlabel("outer radius of the contact a")
+    axs[2].plot(a, out["plateau_level"] * (a / a[0]) ** 1.5, "--", color="C2",
+                label="a full disc's Kendall force, ~ a^(3/2)")
+    axs[2].set_xlabel("outer radius a of the contact (the face's: 1)")
     axs[2].set_ylabel("-F / F0")
-    axs[2].legend(fontsize=7)
-    fig.savefig(path, dpi=120, bbox_inches="tight")
+    axs[2].set_title(f"plateau: max / min = {out['plateau_spread']:.3f} (a disc: {out['disc_spread']:.2f})", fontsize=9)
+    axs[2].legend(fontsize=7, loc="upper left")
+    if path is not None:
+        fig.savefig(path, dpi=120)
+    return fig
+
+
+def report(out: dict) -> None:
     print(f"plateau over a = {out['radius'].min():.3f} .. {out['radius'].max():.3f}: F/F0 = "
           f"{out['force'].min():.4f} .. {out['force'].max():.4f} (max/min {out['plateau_spread']:.4f}; "
           f"a disc: {out['disc_spread']:.3f}), median {out['plateau_level']:.4f}")
+
+
+def main(path=None, resolution: float = 48) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    out = run(resolution)
+    plot(out, path or _gallery.picture_path("fig09_constant_force"))
+    report(out)
 
 
 if __name__ == "__main__":
