@@ -69,36 +69,135 @@ def plot_surface(snapshot, ax=None, *, stride: int = 1):
     return ax
 
 
-def plot_error_vs_time(study, ax=None):
-    """One line per method: relative error of the studied quantity against wall time."""
-    ax = _axes(ax)
-    for m in dict.fromkeys(r.method for r in study.rows):
-        rows = sorted((r for r in study.rows if r.method == m and r.error > 0), key=lambda r: r.wall_time_s)
-        if rows:
-            ax.loglog([r.wall_time_s for r in rows], [r.error for r in rows], "o-", label=m)
-    from matplotlib.ticker import NullFormatter
+def _decade_limits(values):
+    """Log-axis limits on whole decades around ``values``, at least one decade apart, so that
+    the axis always carries at least two labelled major ticks."""
+    v = np.asarray([x for x in values if np.isfinite(x) and x > 0], float)
+    if len(v) == 0:
+        return 1e-3, 1.0
+    lo, hi = np.floor(np.log10(v.min())), np.ceil(np.log10(v.max()))
+    if hi <= lo:
+        hi = lo + 1
+    return 10.0**lo, 10.0**hi
 
-    ax.xaxis.set_minor_formatter(NullFormatter())
-    ax.yaxis.set_minor_formatter(NullFormatter())
-    ax.set_xlabel("wall time [s]")
+
+def _resolution_meaning(study, method) -> str:
+    from .methods import METHODS
+
+    if method == "fem_reference":
+        return "N: 1/grading"
+    if METHODS[method].resolution_is_grid(study.scene):
+        return "N: elements/radius"
+    return "N: elements/process zone"
+
+
+def plot_error_vs_time(study, ax=None):
+    """One line per method: the relative error of the studied quantity against wall time, or
+    against resolution with each run's time written next to it when the runs are too short
+    for their timings to mean anything (``study.TIME_NOISE_FLOOR_S``).
+
+    The error is against ``study.reference_info``; its error bar is drawn as a grey band
+    (errors inside it are not resolved and are drawn hollow).  Without a reference the panel
+    says so instead of plotting."""
+    import textwrap
+
+    from matplotlib.ticker import FixedLocator, FuncFormatter, LogLocator, NullFormatter, NullLocator
+
+    from .study import TIME_NOISE_FLOOR_S
+
+    ax = _axes(ax)
+    ref = study.reference_info
+    unc = ref.uncertainty if ref is not None else 0.0
+    ref_name = ref.name if ref is not None else study.reference_name
+    rows = [r for r in study.rows if np.isfinite(r.error)]
+    ax.set_title("\n".join(textwrap.wrap(f"error against {ref_name}", 48)), fontsize=8)
+    if not rows or (ref is not None and ref.kind == "none") or all(r.error <= unc for r in rows):
+        why = (ref_name if ref is None or ref.kind == "none"
+               else f"every error lies within the reference's error bar (+-{unc:.1e})")
+        ax.text(0.5, 0.5, "\n".join(textwrap.wrap(f"no trustworthy reference: {why}", 40)), ha="center",
+                va="center", transform=ax.transAxes, fontsize=8)
+        ax.xaxis.set_major_locator(NullLocator())
+        ax.yaxis.set_major_locator(NullLocator())
+        return ax
+    by_method = {m: sorted((r for r in rows if r.method == m), key=lambda r: r.resolution)
+                 for m in dict.fromkeys(r.method for r in rows)}
+    # a time axis only where timings mean something: long enough, and growing with resolution
+    timed = (min(r.wall_time_s for r in rows) >= TIME_NOISE_FLOOR_S
+             and all(np.all(np.diff([r.wall_time_s for r in mr]) > 0) for mr in by_method.values()))
+    for m, mr in by_method.items():
+        x = [r.wall_time_s if timed else r.resolution for r in mr]
+        e = [max(r.error, 1e-12) for r in mr]
+        label = m if timed else f"{m} ({_resolution_meaning(study, m)})"
+        (line,) = ax.plot(x, e, "-", lw=1, label=label)
+        for xi, r, ei in zip(x, mr, e):
+            ax.plot(xi, ei, "o", color=line.get_color(), ms=5,
+                    mfc=line.get_color() if r.error > unc else "white")
+            if not timed:
+                ax.annotate(f"{r.wall_time_s:.2g} s", (xi, ei), textcoords="offset points", xytext=(4, 3),
+                            fontsize=6, color=line.get_color())
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    lo, hi = _decade_limits([r.error for r in rows] + ([unc] if unc > 0 else []))
+    ax.set_ylim(lo, hi)
+    if unc > 0:
+        ax.axhspan(lo, unc, color="0.85", zorder=0, label=f"reference error bar (+-{unc:.1e})")
+    ax.yaxis.set_major_locator(LogLocator(base=10))
+    ax.yaxis.set_minor_locator(LogLocator(base=10, subs=(2, 5)))
+    ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    # with a single decade the 2 and 5 ticks carry the scale too
+    ax.yaxis.set_minor_formatter(FuncFormatter(lambda v, _: f"{v:g}") if hi / lo <= 10 else NullFormatter())
+    xs = sorted({r.wall_time_s if timed else r.resolution for r in rows})
+    xpad = 1.25
+    ax.set_xlim(xs[0] / xpad, xs[-1] * xpad * (1.6 if not timed else 1.0))
+    if timed:
+        ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+        ax.xaxis.set_minor_formatter(NullFormatter())
+        ax.set_xlabel("wall time [s]")
+    else:
+        ax.xaxis.set_major_locator(FixedLocator(xs))
+        ax.xaxis.set_minor_locator(NullLocator())
+        ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:.3g}"))
+        ax.tick_params(axis="x", labelsize=7, labelrotation=45)
+        ax.set_xlabel(f"resolution N; wall time noted at each run (timings under {TIME_NOISE_FLOOR_S:g} s, "
+                      "or not growing with N, are noise)",
+                      fontsize=8)
     ax.set_ylabel(f"relative error of {study.quantity}")
-    ax.set_title(f"against {study.reference_name}", fontsize=8)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     return ax
 
 
-def plot_agreement(matrix, scenes, methods, ax=None):
-    """Heat map of |relative difference| (log10) per scene and method; NaN ("-") where not run
-    or where the method is its own reference."""
+#: what a blank cell of the agreement map means, written into the cell
+BLANK_REASONS = {
+    "n/a": "method does not apply",
+    "is ref.": "the method is the reference",
+    "no ref.": "no trustworthy reference",
+}
+
+
+def plot_agreement(matrix, scenes, methods, ax=None, *, notes=None):
+    """Heat map of |relative difference| (log10) per scene and method.  A cell without a value
+    is hatched and carries its reason (``notes[i][j]``, e.g. a key of ``BLANK_REASONS``);
+    ``notes`` may also annotate cells with a value (e.g. "calib.")."""
+    from matplotlib.patches import Rectangle
+
     ax = _axes(ax)
-    m = np.log10(np.maximum(np.asarray(matrix, float), 1e-8))
-    im = ax.imshow(m, cmap="viridis_r", vmin=-6, vmax=0, aspect="auto")
+    arr = np.asarray(matrix, float)
+    m = np.log10(np.maximum(arr, 1e-8))
+    im = ax.imshow(np.ma.masked_invalid(m), cmap="viridis_r", vmin=-6, vmax=0, aspect="auto")
     ax.set_xticks(range(len(methods)), methods, rotation=30, ha="right", fontsize=8)
     ax.set_yticks(range(len(scenes)), scenes, fontsize=8)
     for i in range(len(scenes)):
         for j in range(len(methods)):
-            v = matrix[i][j]
-            ax.text(j, i, "-" if not np.isfinite(v) else f"{v:.1e}", ha="center", va="center", fontsize=7,
-                    color="k" if np.isfinite(v) and v < 1e-3 else "w")
+            v = arr[i, j]
+            note = notes[i][j] if notes is not None else ""
+            if not np.isfinite(v):
+                ax.add_patch(Rectangle((j - 0.5, i - 0.5), 1, 1, facecolor="white", edgecolor="0.6",
+                                       hatch="///", lw=0))
+                ax.text(j, i, note or "-", ha="center", va="center", fontsize=7, color="k",
+                        bbox=dict(facecolor="white", edgecolor="none", pad=1))
+            else:
+                text = f"{v:.1e}" + (f"\n{note}" if note else "")
+                ax.text(j, i, text, ha="center", va="center", fontsize=6 if note else 7,
+                        color="k" if v < 1e-3 else "w")
     ax.figure.colorbar(im, ax=ax, label="log10 |F_A / reference - 1|")
     return ax

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import base64
 import html
-import math
 import os
 import tempfile
 import time
@@ -17,6 +16,7 @@ from .jsonio import dumps as json_dumps
 from .compare import check_results, reference_values
 from .methods import METHODS, applicable_methods
 from .runner import Job, run_jobs
+from . import plotting
 from .study import study
 from .suite import SUITE
 
@@ -59,6 +59,60 @@ def _png(fig, path: Path) -> str:
     return base64.b64encode(data).decode()
 
 
+#: the line under the agreement map: what its cells and its hatched cells mean
+AGREEMENT_CAPTION = (
+    "Each cell: |F_A / reference - 1| of the method's finest run, against the scene's reference "
+    "(closed form; else the FEM; else the Griffith BEM extrapolated in 1/N, 'own extrap.' on its own row). "
+    "'calib.': a calibration residual, matching by construction; '< ref. error bar': the difference is "
+    "smaller than the reference's own error bar, so not resolved. Hatched cells have no value: "
+    + "; ".join(f"'{k}' = {v}" for k, v in plotting.BLANK_REASONS.items()) + ".")
+
+
+def _agreement_row(scene, st, fin, checks, methods):
+    """One row of the agreement map: the relative difference of each method's finest run from
+    the study's reference, and each cell's note (why it is blank, or what its value is)."""
+    ref = st.reference_info
+    row, note = [], []
+    for m in methods:
+        r = fin.get(m)
+        if r is None:
+            row.append(float("nan"))
+            note.append("n/a")
+        elif m == ref.own_method:
+            row.append(float("nan"))
+            note.append("is ref.")
+        elif ref.kind == "none" or not ref.value:
+            row.append(float("nan"))
+            note.append("no ref.")
+        else:
+            v = abs(r.pulloff_force / ref.value - 1)
+            row.append(v)
+            calib = any(c.method == m and c.quantity == "pulloff_force" and c.role == "calibration" for c in checks)
+            own = ref.kind == "extrapolated" and m == "bem_griffith"
+            tags = ["calib."] * calib + ["own extrap."] * own + ["< ref. error bar"] * (v <= ref.uncertainty)
+            note.append("\n".join(tags))
+    return row, note
+
+
+def _error_sentence(st) -> str:
+    """What the error panel measures against, and what each method's sequence supports."""
+    ref = st.reference_info
+    kind = {"closed form": "the closed form",
+            "fem": "the FEM's finest run; its a-posteriori estimate is the error bar",
+            "extrapolated": ("the Griffith BEM's sequence, forces scaled to the nominal face area, extrapolated to "
+                             "N -> infinity in 1/N; the error bar is the "
+                             "spread of the leave-one-out extrapolations, and errors inside it are not resolved"),
+            "none": "nothing: there is no trustworthy reference"}[ref.kind]
+    parts = [f"Error of the {st.quantity.replace('_', ' ')} measured against {st.reference_name}: {kind}."]
+    conv = "; ".join(f"{m}: {c.text}" for m, c in st.convergence.items())
+    if conv:
+        parts.append(f"Convergence in resolution: {conv}.")
+    timed = [f"{m}: error ~ time^-{c.order:.2f}" for m, c in st.time_convergence.items() if c.kind == "order"]
+    parts.append(f"Against wall time: {', '.join(timed)}." if timed else
+                 "No exponent of error against wall time (runs too short, or no rate in resolution).")
+    return " ".join(parts)
+
+
 def report(out_dir="report", *, quick: bool = True, workers: int = 1, scheduler=None, cache_dir=".crossval-cache",
            scenes=None, callback=None, extremes: bool | None = None) -> Report:
     """Run the suite, check every method, write the report; returns what it found.
@@ -69,8 +123,6 @@ def report(out_dir="report", *, quick: bool = True, workers: int = 1, scheduler=
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-
-    from . import plotting
 
     t0 = time.perf_counter()
     out = Path(out_dir)
@@ -93,24 +145,19 @@ def report(out_dir="report", *, quick: bool = True, workers: int = 1, scheduler=
         checks[s] = check_results(SUITE[s], fin)
 
     methods = list(METHODS)
-    matrix = []
+    matrix, notes = [], []
     for s in names:
-        st = studies[s]
-        row = []
-        for m in methods:
-            r = finest[s].get(m)
-            own = st.reference_name.startswith(m)   # no closed form: the method is its own reference
-            row.append(abs(r.pulloff_force / st.reference - 1) if r is not None and st.reference and not own
-                       else float("nan"))
+        row, note = _agreement_row(SUITE[s], studies[s], finest[s], checks[s], methods)
         matrix.append(row)
+        notes.append(note)
 
     sections, data = [], {"package_version": package_version(), "quick": quick, "scenes": {}}
-    fig, ax = plt.subplots(figsize=(6, 0.4 * len(names) + 1.5))
-    plotting.plot_agreement(matrix, names, methods, ax)
+    fig, ax = plt.subplots(figsize=(7, 0.45 * len(names) + 1.6), layout="constrained")
+    plotting.plot_agreement(matrix, names, methods, ax, notes=notes)
     agreement_png = _png(fig, out / "agreement.png")
     for s in names:
         st = studies[s]
-        fig, axs = plt.subplots(1, 3, figsize=(13, 3.6))
+        fig, axs = plt.subplots(1, 3, figsize=(15, 4.2), layout="constrained", width_ratios=(1.1, 0.8, 1.25))
         for m, r in finest[s].items():
             if r.curve is not None:
                 plotting.plot_curve(r, axs[0], label=f"{m}")
@@ -134,22 +181,25 @@ def report(out_dir="report", *, quick: bool = True, workers: int = 1, scheduler=
         theory_rows = "".join(f"<tr><td>{html.escape(k)}</td><td>{v:.6g}</td></tr>" for k, v in th.items() if k != "source")
         chk = "".join(f"<li class={'ok' if c.passed else 'fail'}>{c.label}: {html.escape(c.explain())}</li>"
                       for c in checks[s])
-        rates = ", ".join(f"{m}: order {v:.2f}" for m, v in st.rates.items() if math.isfinite(v))
-        notes = "".join(f"<li>{html.escape(m)}: {html.escape(msg)}</li>" for m, r in finest[s].items() for msg in r.messages)
+        notes_html = "".join(f"<li>{html.escape(m)}: {html.escape(msg)}</li>" for m, r in finest[s].items() for msg in r.messages)
         sections.append(
             f"<h2 id='{s}'>{html.escape(s)}</h2><table><tr><th>method</th><th>F_A</th><th>d at F_A</th><th>stiffness</th>"
             f"<th>initial area</th><th>wall s</th><th>converged</th></tr>{rows}</table>"
             f"<p>Theory ({html.escape(th.get('source', 'none'))}):</p><table>{theory_rows}</table>"
-            f"<p>Error of the pull-off force measured against {html.escape(st.reference_name)}; fitted {rates}.</p>"
-            f"<ul>{chk}</ul><ul>{notes}</ul><img src='data:image/png;base64,{img}'>")
+            f"<p>{html.escape(_error_sentence(st))}</p>"
+            f"<ul>{chk}</ul><ul>{notes_html}</ul><img src='data:image/png;base64,{img}' alt='{html.escape(s)}'>")
+        ref = st.reference_info
         data["scenes"][s] = {
-            "reference": {"value": st.reference, "name": st.reference_name},
+            "reference": {"value": st.reference, "name": st.reference_name, "kind": ref.kind,
+                          "uncertainty": ref.uncertainty},
             "runs": [{"method": r.method, "resolution": r.resolution, "wall_time_s": r.wall_time_s,
-                      "pulloff_force": r.value, "error": r.error} for r in st.rows],
+                      "pulloff_force": r.value, "error": r.error, "signed_error": r.signed_error} for r in st.rows],
             "finest": {m: {k: v for k, v in r.to_json().items() if k != "curve"} for m, r in finest[s].items()},
             "checks": [{"method": c.method, "quantity": c.quantity, "value": c.value, "reference": c.reference,
                         "tolerance": c.tolerance, "passed": c.passed, "role": c.role} for c in checks[s]],
             "rates": st.rates,
+            "time_rates": st.time_rates,
+            "convergence": {m: c.to_json() for m, c in st.convergence.items()},
         }
     extreme_html = ""
     if extremes if extremes is not None else not quick:
@@ -171,7 +221,8 @@ def report(out_dir="report", *, quick: bool = True, workers: int = 1, scheduler=
         "td,th{border:1px solid #ccc;padding:2px 6px;font-size:13px}.fail{color:#b00}.ok{color:#060}</style>"
         f"<h1>Method comparison ({'quick' if quick else 'full'} suite)</h1>"
         f"<p>package {package_version()}; {len(names)} scenes; {'all checks passed' if passed else 'SOME CHECKS FAILED'}; "
-        f"{wall:.0f} s.</p><h2>Agreement</h2><img src='data:image/png;base64,{agreement_png}'>" + "".join(sections)
+        f"{wall:.0f} s.</p><h2>Agreement</h2><img src='data:image/png;base64,{agreement_png}' alt='agreement'>"
+        f"<p>{html.escape(AGREEMENT_CAPTION)}</p>" + "".join(sections)
         + extreme_html)
     _write_atomic(out / "index.html", page.encode())
     _write_atomic(out / "results.json", json_dumps(data, indent=1).encode())

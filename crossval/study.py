@@ -1,4 +1,23 @@
-"""Error against resolution and against run time, with fitted convergence rates."""
+"""Error against resolution and against run time, with convergence orders fitted only where a
+fit means something.
+
+The error of a run is measured against the best reference the suite has, never against the
+same solver at its own finest grid (that error is zero by construction at the finest grid and
+meaningless below it):
+
+1. the closed form where the sheet has one (Kendall, JKR, graded Eqs. 34-39);
+2. else the FEM for the circular faces it covers, with its a-posteriori estimate as error bar
+   (the FEM's own runs are then not measured);
+3. else the Griffith BEM's sequence (pull-off forces scaled from the staircase face to the
+   nominal one) extrapolated in 1/N (it converges at first order, README "Accuracy, as
+   measured"), with the spread of the leave-one-out extrapolations as error bar;
+4. else no reference: the study says so and measures nothing.
+
+An error smaller than the reference's error bar is not resolved: it is kept in the rows but
+not used for a rate.  A convergence order is fitted only where the errors keep their sign and
+fall monotonically over at least three resolutions and the power law follows them closely;
+otherwise the study reports an envelope, error <= c/N.
+"""
 from __future__ import annotations
 
 import math
@@ -7,21 +26,28 @@ from dataclasses import dataclass, field
 import numpy as np
 
 import contact_scene as cs
+from contact_scene import theory as T
 
 from .compare import reference_values
-from .methods import applicable_methods
+from .methods import METHODS, applicable_methods
 from .runner import Job, run_jobs
 
-__all__ = ["StudyRow", "Study", "study", "DEFAULT_RESOLUTIONS"]
+__all__ = ["StudyRow", "Study", "Convergence", "ErrorReference", "study", "convergence",
+           "extrapolate_first_order", "DEFAULT_RESOLUTIONS", "TIME_NOISE_FLOOR_S"]
 
 #: per method, the resolutions a study sweeps unless told otherwise (BEM: elements per
 #: radius; FEM: 1/grading)
 DEFAULT_RESOLUTIONS = {"bem_griffith": (8, 12, 16, 24, 32), "bem_energy": (1.0, 2.0, 3.0),
                        "fem_reference": (0.5, 2 / 3, 1.0)}
 
-# the most accurate method first: the finest run of the first applicable one is the
-# reference where the scene has no closed form
-_ACCURACY_ORDER = ("fem_reference", "bem_griffith", "bem_energy")
+#: runs shorter than this measure start-up, caching and the other processes on the machine
+#: more than the solve, so no exponent of error against time is fitted through them
+TIME_NOISE_FLOOR_S = 0.5
+
+#: a power law is accepted as the sequence's order when no error lies farther from it (in
+#: log) than this fraction of the sequence's total fall: a rate has to describe the fall,
+#: not one straight line through a wiggle
+MAX_RELATIVE_LOG_RESIDUAL = 0.1
 
 
 @dataclass(frozen=True)
@@ -30,7 +56,43 @@ class StudyRow:
     resolution: float
     wall_time_s: float
     value: float
-    error: float            # relative, against the reference
+    error: float            # |relative error| against the reference; NaN where not measured
+    signed_error: float = math.nan   # value / reference - 1
+
+
+@dataclass(frozen=True)
+class ErrorReference:
+    """What the errors are measured against."""
+    value: float
+    name: str
+    #: "closed form" | "fem" | "extrapolated" | "none"
+    kind: str
+    #: relative error bar of the reference itself (0 for a closed form)
+    uncertainty: float = 0.0
+    #: the method whose own runs are not measured against it (the FEM reference), if any
+    own_method: str | None = None
+
+
+@dataclass(frozen=True)
+class Convergence:
+    """How one method's error falls with resolution (or time)."""
+    #: "order": a fitted power law; "envelope": error <= c / N only; "none": nothing to say
+    kind: str
+    order: float = math.nan       # fitted order p in error ~ N^-p ("order" only)
+    constant: float = math.nan    # c of the envelope error <= c / N (max of error * N)
+    reason: str = ""
+
+    @property
+    def text(self) -> str:
+        if self.kind == "order":
+            return f"order {self.order:.2f} (fitted)"
+        if self.kind == "envelope":
+            return f"no rate ({self.reason}); error <= c/N with c = {self.constant:.3g}"
+        return f"no rate ({self.reason})"
+
+    def to_json(self) -> dict:
+        return {"kind": self.kind, "order": self.order, "constant": self.constant, "reason": self.reason,
+                "text": self.text}
 
 
 @dataclass(frozen=True, eq=False)
@@ -40,42 +102,159 @@ class Study:
     reference: float
     reference_name: str
     rows: tuple[StudyRow, ...]
-    rates: dict = field(default_factory=dict)          # method -> fitted order in resolution
-    time_rates: dict = field(default_factory=dict)     # method -> fitted exponent of error vs time
+    #: method -> fitted order in resolution, NaN where no order is meaningful (see ``convergence``)
+    rates: dict = field(default_factory=dict)
+    #: method -> fitted exponent of error against wall time, NaN where the timings or the
+    #: errors do not support one
+    time_rates: dict = field(default_factory=dict)
     results: dict = field(default_factory=dict)        # (method, resolution) -> Result
+    reference_info: ErrorReference | None = None
+    convergence: dict = field(default_factory=dict)    # method -> Convergence in resolution
+    time_convergence: dict = field(default_factory=dict)  # method -> Convergence in wall time
 
 
-def _fit(x, y):
-    x, y = np.asarray(x, float), np.asarray(y, float)
-    ok = (x > 0) & (y > 0)
-    if ok.sum() < 2:
-        return float("nan")
-    return float(-np.polyfit(np.log(x[ok]), np.log(y[ok]), 1)[0])
+def _envelope(x, e) -> float:
+    return float(np.max(np.abs(e) * x))
+
+
+def convergence(resolutions, errors, *, floor: float = 0.0) -> Convergence:
+    """The convergence of a sequence of (signed or absolute) relative errors over increasing
+    ``resolutions``.
+
+    An order is fitted only if at least three errors above ``floor`` (the reference's own
+    error bar) keep their sign, fall monotonically and lie on the fitted power law within
+    ``MAX_RELATIVE_LOG_RESIDUAL`` of their total fall in log; otherwise the envelope
+    error <= c/N, c = max(|error| N), is what the sequence supports."""
+    x = np.asarray(resolutions, float)
+    e = np.asarray(errors, float)
+    ok = np.isfinite(x) & np.isfinite(e) & (x > 0)
+    x, e = x[ok], e[ok]
+    if len(x) == 0:
+        return Convergence("none", reason="no measured error")
+    order = np.argsort(x)
+    x, e = x[order], e[order]
+    c = _envelope(x, e)
+    resolved = np.abs(e) > floor
+    if not np.all(resolved):
+        if not np.any(resolved):
+            return Convergence("none", reason="every error is below the reference's error bar")
+        return Convergence("envelope", constant=c, reason="errors below the reference's error bar")
+    if len(x) < 3:
+        return Convergence("envelope", constant=c, reason=f"{len(x)} resolution{'s' if len(x) != 1 else ''}, "
+                                                          "a rate needs 3")
+    a = np.abs(e)
+    if np.any(np.sign(e) != np.sign(e[0])) or np.any(np.diff(a) >= 0):
+        return Convergence("envelope", constant=c, reason="errors zig-zag")
+    lx, ly = np.log(x), np.log(a)
+    slope, icpt = np.polyfit(lx, ly, 1)
+    resid = np.max(np.abs(ly - (slope * lx + icpt)))
+    if resid > MAX_RELATIVE_LOG_RESIDUAL * (ly[0] - ly[-1]):
+        return Convergence("envelope", constant=c, reason="errors not on a power law")
+    return Convergence("order", order=float(-slope), constant=c)
+
+
+def extrapolate_first_order(resolutions, values) -> tuple[float, float]:
+    """The N -> infinity limit of values converging like v + b/N (least squares over all
+    resolutions) and its error bar: the largest distance of the leave-one-out extrapolations
+    from it (0 from two resolutions, where the fit is exact and says nothing about its error,
+    so the caller needs at least three)."""
+    x = 1.0 / np.asarray(resolutions, float)
+    v = np.asarray(values, float)
+    if len(x) < 3:
+        raise ValueError("a first-order extrapolation with an error bar needs at least 3 resolutions")
+    lim = float(np.polyfit(x, v, 1)[1])
+    loo = [float(np.polyfit(np.delete(x, i), np.delete(v, i), 1)[1]) for i in range(len(x))]
+    return lim, max(abs(t - lim) for t in loo)
+
+
+def _at_nominal_area(scene, result, quantity) -> tuple[float, bool]:
+    """The pull-off force of a Griffith run scaled from its staircase face to the nominal face,
+    F ~ A^((3+k)/4) (contact_scene.theory.force_at_nominal_area), and whether it was scaled.
+    The staircase's area zig-zags with N; without it the 1/N extrapolation fits the zig-zag
+    rather than the convergence.  Both sequences have the same limit (the staircase's area
+    tends to the nominal one), so the scaling changes the error bar, not the reference."""
+    v = getattr(result, quantity)
+    elements = result.info.get("face_elements")
+    if quantity != "pulloff_force" or not elements or not scene.indenter.profile.is_flat:
+        return v, False
+    k = getattr(scene.material, "exponent", 0.0)
+    area = elements * result.grid_spacing**2
+    return float(T.force_at_nominal_area(v, area=area, nominal_area=scene.indenter.shape.area, k=k)), True
+
+
+def _reference(scene, quantity, by, res) -> ErrorReference:
+    theory = reference_values(scene)
+    if quantity in theory:
+        return ErrorReference(theory[quantity], theory["source"], "closed form")
+    if "fem_reference" in res:
+        finest = max(res["fem_reference"])
+        r = by[("fem_reference", finest)]
+        u = r.accuracy_estimate or 0.0
+        return ErrorReference(getattr(r, quantity), f"fem_reference at 1/grading {finest:g} (+-{u:.1e})", "fem",
+                              u, own_method="fem_reference")
+    if len(res.get("bem_griffith", ())) >= 3:
+        ns = sorted(res["bem_griffith"])
+        vals, scaled = zip(*(_at_nominal_area(scene, by[("bem_griffith", n)], quantity) for n in ns))
+        lim, err = extrapolate_first_order(ns, vals)
+        u = err / abs(lim) if lim else math.inf
+        how = ", forces scaled to the nominal area," if all(scaled) else ""
+        return ErrorReference(lim, f"bem_griffith{how} extrapolated in 1/N over N = {', '.join(f'{n:g}' for n in ns)} "
+                                   f"(+-{u:.1e})", "extrapolated", u)
+    return ErrorReference(math.nan, "no reference (no closed form, no FEM, fewer than 3 Griffith resolutions)",
+                          "none", math.inf)
+
+
+def _time_convergence(rows, floor) -> Convergence:
+    rows = sorted(rows, key=lambda r: r.resolution)
+    t = np.array([r.wall_time_s for r in rows])
+    if len(t) and t.min() < TIME_NOISE_FLOOR_S:
+        return Convergence("none", reason=f"runs under {TIME_NOISE_FLOOR_S:g} s: timings are noise")
+    if np.any(np.diff(t) <= 0):
+        return Convergence("none", reason="wall time does not grow with resolution")
+    cv = convergence(t, [r.signed_error for r in rows], floor=floor)
+    return cv if cv.kind == "order" else Convergence("none", reason=cv.reason)
 
 
 def study(scene: cs.Scene, *, methods=None, resolutions: dict | None = None, quantity: str = "pulloff_force",
           workers: int = 1, scheduler=None, cache=None, callback=None) -> Study:
-    """Run each method over its resolutions; measure the error of ``quantity`` against the
-    closed form where one exists, else against the finest run of the most accurate method."""
+    """Run each method over its resolutions and measure the error of ``quantity`` against the
+    best reference available (module docstring); the runs a reference needs beyond the methods
+    asked for (the FEM, the Griffith sequence) are run as well but not reported as rows."""
     names = [m.name for m in applicable_methods(scene)] if methods is None else list(methods)
-    res = {m: tuple((resolutions or {}).get(m, DEFAULT_RESOLUTIONS[m])) for m in names}
-    jobs = [Job(scene, m, r) for m in names for r in res[m]]
+    given = dict(resolutions or {})
+    res = {m: tuple(given.get(m, DEFAULT_RESOLUTIONS[m])) for m in names}
+    if quantity not in reference_values(scene):
+        if METHODS["fem_reference"].applies(scene) is None:
+            res.setdefault("fem_reference", given.get("fem_reference", DEFAULT_RESOLUTIONS["fem_reference"][-1:]))
+        elif METHODS["bem_griffith"].applies(scene) is None:
+            res.setdefault("bem_griffith", given.get("bem_griffith", DEFAULT_RESOLUTIONS["bem_griffith"]))
+    jobs = [Job(scene, m, r) for m in res for r in res[m]]
     results = run_jobs(jobs, workers=workers, scheduler=scheduler, cache=cache, callback=callback)
     by = {(j.method, j.resolution): r for j, r in zip(jobs, results)}
-    theory = reference_values(scene)
-    if quantity in theory:
-        ref, ref_name = theory[quantity], theory["source"]
-    else:
-        best = next(m for m in _ACCURACY_ORDER if m in names)
-        finest = max(res[best])
-        ref, ref_name = getattr(by[(best, finest)], quantity), f"{best} at resolution {finest:g}"
+    ref = _reference(scene, quantity, by, res)
     rows = []
     for (m, r), result in by.items():
+        if m not in names:
+            continue
         v = getattr(result, quantity)
-        rows.append(StudyRow(m, r, result.wall_time_s, v, abs(v / ref - 1) if ref else math.inf))
-    rates, trates = {}, {}
+        measured = ref.kind != "none" and m != ref.own_method and ref.value != 0
+        signed = v / ref.value - 1 if measured else math.nan
+        rows.append(StudyRow(m, r, result.wall_time_s, v, abs(signed), signed))
+    rates, trates, conv, tconv = {}, {}, {}, {}
     for m in names:
-        mr = [row for row in rows if row.method == m and not (row.error == 0 and ref_name.startswith(m))]
-        rates[m] = _fit([row.resolution for row in mr], [row.error for row in mr])
-        trates[m] = _fit([row.wall_time_s for row in mr], [row.error for row in mr])
-    return Study(scene, quantity, ref, ref_name, tuple(rows), rates, trates, by)
+        mr = [row for row in rows if row.method == m]
+        if m == ref.own_method:
+            conv[m] = tconv[m] = Convergence("none", reason="it is the reference")
+        elif ref.kind == "extrapolated" and m == "bem_griffith":
+            # its errors against its own 1/N extrapolation have order 1 by construction
+            c = convergence([r.resolution for r in mr], [r.signed_error for r in mr], floor=ref.uncertainty)
+            reason = "its own 1/N extrapolation is the reference, so the order is assumed, not measured"
+            conv[m] = Convergence("envelope", constant=c.constant, reason=reason) if math.isfinite(c.constant) \
+                else Convergence("none", reason=reason)
+            tconv[m] = Convergence("none", reason=reason)
+        else:
+            conv[m] = convergence([r.resolution for r in mr], [r.signed_error for r in mr], floor=ref.uncertainty)
+            tconv[m] = (_time_convergence(mr, ref.uncertainty) if conv[m].kind == "order"
+                        else Convergence("none", reason=conv[m].reason))
+        rates[m], trates[m] = conv[m].order, tconv[m].order
+    return Study(scene, quantity, ref.value, ref.name, tuple(rows), rates, trates, by, ref, conv, tconv)

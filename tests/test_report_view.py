@@ -1,0 +1,173 @@
+"""The report as a reader sees it: every figure is a real image, the page renders in a browser,
+results.json is strict JSON, and a convergence order is printed only where a fit means one."""
+import base64
+import json
+import math
+import shutil
+import struct
+import subprocess
+import tempfile
+from html.parser import HTMLParser
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import crossval
+from crossval.study import convergence, extrapolate_first_order
+
+SCENES = ["kendall_circle", "square"]
+PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
+
+
+@pytest.fixture(scope="module")
+def rendered(tmp_path_factory):
+    out = tmp_path_factory.mktemp("report")
+    rep = crossval.report(out, quick=True, cache_dir=None, scenes=SCENES)
+    return rep, out
+
+
+class _Images(HTMLParser):
+    def __init__(self):
+        super().__init__()
+        self.srcs = []
+
+    def handle_starttag(self, tag, attrs):
+        if tag == "img":
+            self.srcs.append(dict(attrs).get("src", ""))
+
+
+def _png_size(data: bytes) -> tuple[int, int]:
+    assert data[:8] == PNG_MAGIC, "not a PNG"
+    assert data[12:16] == b"IHDR"
+    return struct.unpack(">II", data[16:24])
+
+
+def _strict_json(text):
+    def refuse(token):
+        raise ValueError(f"not valid JSON: bare {token}")
+    return json.loads(text, parse_constant=refuse)
+
+
+def test_every_image_is_an_embedded_png_of_nonzero_size(rendered):
+    _, out = rendered
+    parser = _Images()
+    parser.feed((out / "index.html").read_text())
+    # the agreement map and one figure per scene
+    assert len(parser.srcs) == 1 + len(SCENES)
+    for src in parser.srcs:
+        head, _, payload = src.partition(",")
+        assert head == "data:image/png;base64" and payload
+        w, h = _png_size(base64.b64decode(payload, validate=True))
+        assert w > 100 and h > 100
+
+
+def test_results_json_is_strict_and_names_each_reference(rendered):
+    _, out = rendered
+    data = _strict_json((out / "results.json").read_text())
+    kendall, square = data["scenes"]["kendall_circle"], data["scenes"]["square"]
+    assert kendall["reference"]["kind"] == "closed form"
+    # the square has no closed form and no FEM: never the Griffith solver at its own finest grid
+    assert square["reference"]["kind"] == "extrapolated"
+    assert square["reference"]["uncertainty"] is not None and square["reference"]["uncertainty"] > 0
+    finest = max(r["resolution"] for r in square["runs"] if r["method"] == "bem_griffith")
+    (run,) = [r for r in square["runs"] if r["method"] == "bem_griffith" and r["resolution"] == finest]
+    assert run["error"] > 0
+    for scene in data["scenes"].values():
+        for m, c in scene["convergence"].items():
+            assert (c["kind"] == "order") == (scene["rates"][m] is not None)
+
+
+def test_the_page_prints_no_rate_the_errors_do_not_support(rendered):
+    rep, out = rendered
+    page = (out / "index.html").read_text()
+    for st in rep.studies.values():
+        for m, c in st.convergence.items():
+            if c.kind == "order":
+                assert 0 < c.order < 5, f"{st.scene.name} {m}: order {c.order}"
+    assert "time^--" not in page and "order -" not in page
+    assert "Hatched cells" in page
+
+
+def test_report_text_explains_blank_cells(rendered):
+    rep, _ = rendered
+    from crossval.report import _agreement_row
+    from crossval.methods import METHODS
+
+    st = rep.studies["square"]
+    fin = {m: st.results[(m, max(r.resolution for r in st.rows if r.method == m))]
+           for m in dict.fromkeys(r.method for r in st.rows)}
+    row, notes = _agreement_row(st.scene, st, fin, rep.checks["square"], list(METHODS))
+    j = list(METHODS).index("fem_reference")
+    assert math.isnan(row[j]) and notes[j] == "n/a"
+    assert notes[list(METHODS).index("bem_griffith")] == "own extrap."
+
+
+@pytest.mark.skipif(shutil.which("chromium") is None, reason="chromium is not installed")
+def test_page_renders_in_headless_chromium_with_every_figure_loaded(rendered):
+    _, out = rendered
+    # an inline script writes each image's natural size into the DOM once the page has loaded
+    probe = out / "probe.html"
+    probe.write_text((out / "index.html").read_text() + (
+        "<script>window.addEventListener('load', () => {const p = document.createElement('pre');"
+        "p.id = 'sizes'; p.textContent = JSON.stringify([...document.images].map("
+        "i => [i.complete, i.naturalWidth, i.naturalHeight])); document.body.appendChild(p);});</script>"))
+    with tempfile.TemporaryDirectory() as profile:
+        r = subprocess.run(
+            ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+             "--disable-background-networking", "--disable-component-update", "--disable-sync",
+             f"--user-data-dir={profile}", "--virtual-time-budget=5000", "--dump-dom", probe.as_uri()],
+            capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr[-2000:]
+    start = r.stdout.index('<pre id="sizes">') + len('<pre id="sizes">')
+    sizes = json.loads(r.stdout[start:r.stdout.index("</pre>", start)])
+    assert len(sizes) == 1 + len(SCENES)
+    for complete, w, h in sizes:
+        assert complete and w > 100 and h > 100
+
+
+# --- the rate logic -----------------------------------------------------------------------
+
+N = np.array([8, 12, 16, 24, 32])
+
+
+def test_a_clean_first_order_sequence_gets_order_one():
+    c = convergence(N, 0.4 / N * (1 + 0.3 / N))
+    assert c.kind == "order" and abs(c.order - 1) < 0.05
+
+
+def test_a_zig_zag_gets_an_envelope_not_a_rate():
+    e = 0.3 / N * np.array([1, -0.4, 0.9, 0.2, -0.7])   # the staircase's sign changes
+    c = convergence(N, e)
+    assert c.kind == "envelope" and math.isnan(c.order)
+    assert c.constant == pytest.approx(0.3) and "zig-zag" in c.text
+    # unsigned, but not monotone either
+    assert convergence(N, np.abs(e)).kind == "envelope"
+
+
+def test_an_error_rising_with_resolution_gets_no_order():
+    assert convergence([8, 12, 16], [0.001, 0.004, 0.01]).kind == "envelope"
+
+
+def test_two_resolutions_are_not_a_rate():
+    c = convergence([0.5, 2 / 3], [3e-5, 1e-8])
+    assert c.kind == "envelope" and "needs 3" in c.text
+
+
+def test_a_collapse_through_zero_is_not_a_high_order():
+    # |error| falls monotonically but the last point sits next to a sign change: a line
+    # through three points with a collapsing end is not a power law
+    assert convergence([8, 12, 16], [0.02, 0.015, 1e-4]).kind == "envelope"
+
+
+def test_errors_inside_the_reference_error_bar_give_no_rate():
+    c = convergence(N, 0.4 / N, floor=0.02)
+    assert c.kind != "order"
+
+
+def test_first_order_extrapolation_recovers_the_limit_and_bounds_its_error():
+    lim, err = extrapolate_first_order(N, 2.0 + 0.5 / N)
+    assert lim == pytest.approx(2.0, abs=1e-12) and err < 1e-12
+    wiggly = 2.0 + 0.5 / N + 0.01 * np.array([1, -1, 1, -1, 1])
+    lim, err = extrapolate_first_order(N, wiggly)
+    assert abs(lim - 2.0) <= err and err > 0.005
