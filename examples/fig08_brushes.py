@@ -8,7 +8,7 @@ F / F_A,lower = (4/pi)^(3/4) sqrt(phi) = 1.198 sqrt(phi); the continuous square 
 reaches about 0.88 of its bound (Fig. 4), so the master curve's slope is expected near that
 square's own F / F_A,lower.
 
-    python examples/fig08_brushes.py        # full version, writes fig08_brushes.png
+    python examples/fig08_brushes.py        # full version, writes docs/gallery/fig08_brushes.png
     from examples.fig08_brushes import run  # short version (used by the tests)
 """
 from __future__ import annotations
@@ -19,6 +19,11 @@ import numpy as np
 
 import contact_scene as cs
 from contact_scene import theory as T
+
+try:                                    # imported as examples.<name> (tests) or run as a script
+    from examples import _gallery
+except ImportError:
+    import _gallery
 
 SIDE = 1.0
 BRUSHES = {
@@ -62,37 +67,49 @@ def _reach(snapshot) -> float:
     return float(np.hypot(X[c], Y[c]).max()) if c.any() else 0.0
 
 
-def main(path: str = "fig08_brushes.png", cells_per_side: int = 128) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
+def plot(out: dict, path=None):
+    """Three brushes' last stable contacts and every brush's force against sqrt(phi)."""
     import matplotlib.pyplot as plt
 
-    from crossval.plotting import plot_contact
-
-    out = run(cells_per_side)
     b = out["brushes"]
-    fig, axs = plt.subplots(1, 4, figsize=(14, 3.8), layout="constrained")
+    fig, axs = plt.subplots(1, 4, figsize=(15, 4.0), layout="constrained",
+                            gridspec_kw={"width_ratios": [1, 1, 1, 1.25]})
     for ax, name in zip(axs[:3], ("regular r=.05 p=.2", "random 45 r=.05", "mixed 30 r<=.07")):
         res = b[name]["result"]
-        plot_contact(res.last_stable, ax, face=cs.rasterise(BRUSHES[name], res.grid_spacing).mask)
-        ax.set_title(f"{name}: last stable\nphi = {b[name]['phi']:.3f}", fontsize=8)
+        _gallery.contact_map(ax, res.last_stable, cs.rasterise(BRUSHES[name], res.grid_spacing).mask,
+                             title=f"{name}: last stable\nphi = {b[name]['phi']:.3f}  (square side L = 1)")
+    fig.legend(handles=_gallery.contact_handles(), loc="outside lower left", fontsize=7, ncols=2)
     ax = axs[3]
-    s = np.sqrt([o["phi"] for o in b.values()])
-    ax.plot(s, [o["F_over_lower"] for o in b.values()], "o")
-    for name, o in b.items():
-        ax.annotate(name, (o["phi"] ** 0.5, o["F_over_lower"]), fontsize=5)
+    markers = {"square": "*", "regular": "o", "random": "^", "mixed": "s"}
+    for i, (name, o) in enumerate(b.items()):
+        ax.plot(o["phi"] ** 0.5, o["F_over_lower"], markers[name.split()[0]], color=f"C{i}", ms=6, ls="none",
+                label=name if name != "square" else "plain square")
     t = np.linspace(0, 1, 2)
-    ax.plot(t, out["slope"] * t, "-", label=f"fit: {out['slope']:.3f} sqrt(phi)")
-    ax.plot(t, out["eq24_slope"] * t, "--", label="Eq. 24 (upper bound)")
-    ax.set_xlabel("sqrt(phi)")
-    ax.set_ylabel("F_A / F_A,lower(square)")
-    ax.legend(fontsize=7)
-    fig.savefig(path, dpi=120, bbox_inches="tight")
-    for name, o in b.items():
+    ax.plot(t, out["slope"] * t, "-", color="k", lw=1, label=f"fit: {out['slope']:.3f} sqrt(phi)")
+    ax.plot(t, out["eq24_slope"] * t, "--", color="grey", lw=1, label=f"Eq. 24 (upper bound): {out['eq24_slope']:.3f} sqrt(phi)")
+    ax.set_xlabel("sqrt(phi)  (phi: columns' area / square's)")
+    ax.set_ylabel("F_A / F_A,lower(square)  (Eq. 18)")
+    ax.set_title(f"master curve: largest deviation {out['scatter']:.1%}", fontsize=9)
+    ax.legend(fontsize=6.5, loc="upper left")
+    if path is not None:
+        fig.savefig(path, dpi=120)
+    return fig
+
+
+def report(out: dict) -> None:
+    for name, o in out["brushes"].items():
         print(f"{name:>20}: phi = {o['phi']:.4f}  F/F_lower = {o['F_over_lower']:.4f}"
               f"  / sqrt(phi) = {o['F_over_lower'] / o['phi'] ** 0.5:.4f}  last stable reach = {o['last_stable_reach']:.3f} L/2")
     print(f"master slope {out['slope']:.4f} (Eq. 24: {out['eq24_slope']:.4f}), largest deviation {out['scatter']:.3%}")
+
+
+def main(path=None, cells_per_side: int = 128) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    out = run(cells_per_side)
+    plot(out, path or _gallery.picture_path("fig08_brushes"))
+    report(out)
 
 
 if __name__ == "__main__":

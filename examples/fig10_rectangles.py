@@ -6,7 +6,7 @@ every shortened state is critical (stiffness ~ length, filling ~ 1/length, so Eq
 holds) and the whole strip goes at once, while a strip that widens along its length can
 shorten stably from its narrow end (``run_tapered``).
 
-    python examples/fig10_rectangles.py            # aspect 1, 2, 5, 10, 20; writes fig10.png
+    python examples/fig10_rectangles.py            # aspect 1, 2, 5, 10, 20; writes docs/gallery/fig10_rectangles.png
     from examples.fig10_rectangles import run      # short version (the tests use 1, 4, 8)
 """
 from __future__ import annotations
@@ -15,6 +15,11 @@ import math
 
 import contact_scene as cs
 from contact_scene import theory as T
+
+try:                                    # imported as examples.<name> (tests) or run as a script
+    from examples import _gallery
+except ImportError:
+    import _gallery
 
 
 def run(aspects=(1, 2, 5, 10, 20), cells_across: int = 12) -> dict:
@@ -59,32 +64,50 @@ def run_tapered(cells_across: int = 12, **shape) -> dict:
     return out
 
 
-def main(path: str = "fig10.png") -> None:
+def plot(outs: dict, path=None):
+    """``outs``: {"rectangles": run(), "tapered": run_tapered()}; the last stable contact of
+    every face, each panel to its own scale (lengths in units of the short side)."""
+    import matplotlib.pyplot as plt
+    from matplotlib.ticker import MultipleLocator
+
+    out, tap = outs["rectangles"], outs["tapered"]
+    # axes heights follow the faces' shapes (capped for the squat ones) so no panel is mostly blank
+    heights = [min(2.2, 8.0 / ar) for ar in out] + [8.0 * 1.7 / 10]
+    fig, axs = plt.subplots(len(heights), 1, figsize=(8.8, sum(heights) + 0.75 * len(heights)),
+                            layout="constrained", gridspec_kw={"height_ratios": heights})
+    for ax, (ar, o) in zip(axs, out.items()):
+        r = o["result"]
+        _gallery.contact_map(ax, r.last_stable, cs.rasterise(cs.Rectangle(float(ar), 1.0), r.grid_spacing).mask,
+                             title=f"{ar}:1 rectangle: last stable contact keeps {o['last_stable_fraction']:.2f} of the "
+                                   f"face (incircle {o['incircle_fraction']:.2f});  F_max / F_A,upper = {o['max']:.3f}")
+        if ar <= 2:                                                 # a narrow panel: fewer ticks, none touching
+            ax.xaxis.set_major_locator(MultipleLocator(0.5))
+    t = tap["tapered"]
+    _gallery.contact_map(axs[-1], t["result"].last_stable, cs.rasterise(tapered_strip(), t["result"].grid_spacing).mask,
+                         title=f"tapered 10:1 strip (width 0.3 to 1.7): last stable contact keeps "
+                               f"{t['last_stable_fraction']:.2f} of the face, centred {t['last_stable_centre']:+.2f} "
+                               f"of its length from the middle")
+    fig.legend(handles=_gallery.contact_handles(), loc="outside lower center", fontsize=8, ncols=2)
+    if path is not None:
+        fig.savefig(path, dpi=110)
+    return fig
+
+
+def report(outs: dict) -> None:
+    for ar, o in outs["rectangles"].items():
+        print(f"{ar}:1  F_max/F_up = {o['max']:.4f}  last stable / face = {o['last_stable_fraction']:.3f}")
+    for name, o in outs["tapered"].items():
+        print(f"{name} strip (16 cells across): last stable / face = {o['last_stable_fraction']:.3f}, "
+              f"its centre at x / length = {o['last_stable_centre']:+.3f}")
+
+
+def main(path=None) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from crossval.plotting import plot_contact
-
-    out = run()
-    tap = run_tapered(cells_across=16)
-    fig, axs = plt.subplots(len(out) + 1, 1, figsize=(8, 2 * (len(out) + 1)))
-    for ax, (ar, o) in zip(axs, out.items()):
-        plot_contact(o["result"].last_stable, ax)
-        ax.set_title(f"{ar}:1  last stable {o['last_stable_fraction']:.2f} of the face "
-                     f"(incircle {o['incircle_fraction']:.2f}); F_max/F_up = {o['max']:.3f}", fontsize=9)
-    t = tap["tapered"]
-    plot_contact(t["result"].last_stable, axs[-1],
-                 face=cs.rasterise(tapered_strip(), t["result"].grid_spacing).mask)
-    axs[-1].set_title(f"tapered 10:1 strip: last stable {t['last_stable_fraction']:.2f} of the face", fontsize=9)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    for ar, o in out.items():
-        print(f"{ar}:1  F_max/F_up = {o['max']:.4f}  last stable / face = {o['last_stable_fraction']:.3f}")
-    for name, o in tap.items():
-        print(f"{name} strip (16 cells across): last stable / face = {o['last_stable_fraction']:.3f}, "
-              f"its centre at x / length = {o['last_stable_centre']:+.3f}")
+    outs = {"rectangles": run(), "tapered": run_tapered(cells_across=16)}
+    plot(outs, path or _gallery.picture_path("fig10_rectangles"))
+    report(outs)
 
 
 if __name__ == "__main__":
