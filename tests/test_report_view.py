@@ -1,8 +1,11 @@
 """The report as a reader sees it: every figure is a real image, the page renders in a browser,
 results.json is strict JSON, and a convergence order is printed only where a fit means one."""
 import base64
+import html
+import io
 import json
 import math
+import re
 import shutil
 import struct
 import subprocess
@@ -10,6 +13,7 @@ import tempfile
 from html.parser import HTMLParser
 from pathlib import Path
 
+import matplotlib.image
 import numpy as np
 import pytest
 
@@ -58,41 +62,48 @@ def test_every_image_is_an_embedded_png_of_nonzero_size(rendered):
     for src in parser.srcs:
         head, _, payload = src.partition(",")
         assert head == "data:image/png;base64" and payload
-        w, h = _png_size(base64.b64decode(payload, validate=True))
+        data = base64.b64decode(payload, validate=True)
+        w, h = _png_size(data)
         assert w > 100 and h > 100
+        # the whole image decodes (a truncated stream keeps a valid header)
+        pixels = matplotlib.image.imread(io.BytesIO(data), format="png")
+        assert pixels.shape[:2] == (h, w) and pixels.std() > 0
 
 
-def test_results_json_is_strict_and_names_each_reference(rendered):
+def test_results_json_is_strict_and_never_measures_a_solver_against_its_own_finest_grid(rendered):
     _, out = rendered
     data = _strict_json((out / "results.json").read_text())
     kendall, square = data["scenes"]["kendall_circle"], data["scenes"]["square"]
-    assert kendall["reference"]["kind"] == "closed form"
-    # the square has no closed form and no FEM: never the Griffith solver at its own finest grid
-    assert square["reference"]["kind"] == "extrapolated"
-    assert square["reference"]["uncertainty"] is not None and square["reference"]["uncertainty"] > 0
+    assert kendall["reference"]["name"].startswith("Kendall")
+    # the square has no closed form and no FEM: its finest Griffith run must have a measured,
+    # non-zero error (against the Griffith solver's own finest grid it would be exactly 0)
     finest = max(r["resolution"] for r in square["runs"] if r["method"] == "bem_griffith")
     (run,) = [r for r in square["runs"] if r["method"] == "bem_griffith" and r["resolution"] == finest]
-    assert run["error"] > 0
+    assert run["error"] is not None and run["error"] > 0
+    assert square["reference"]["kind"] == "extrapolated"
+    assert square["reference"]["uncertainty"] is not None and square["reference"]["uncertainty"] > 0
     for scene in data["scenes"].values():
         for m, c in scene["convergence"].items():
             assert (c["kind"] == "order") == (scene["rates"][m] is not None)
 
 
 def test_the_page_prints_no_rate_the_errors_do_not_support(rendered):
-    rep, out = rendered
+    _, out = rendered
     page = (out / "index.html").read_text()
-    for st in rep.studies.values():
-        for m, c in st.convergence.items():
-            if c.kind == "order":
-                assert 0 < c.order < 5, f"{st.scene.name} {m}: order {c.order}"
-    assert "time^--" not in page and "order -" not in page
-    assert "Hatched cells" in page
+    data = _strict_json((out / "results.json").read_text())
+    # a first- or second-order method: a fitted order outside (0, 5) is a fit through noise
+    orders = [float(v) for v in re.findall(r"order (-?\d+(?:\.\d+)?)", page)]
+    orders += [v for sc in data["scenes"].values() for v in sc["rates"].values() if v is not None]
+    assert all(0 < v < 5 for v in orders), orders
+    assert "time^--" not in page
 
 
-def test_report_text_explains_blank_cells(rendered):
-    rep, _ = rendered
-    from crossval.report import _agreement_row
+def test_blank_cells_of_the_agreement_map_are_explained(rendered):
+    rep, out = rendered
+    page = html.unescape((out / "index.html").read_text())
+    assert "Hatched cells have no value" in page and "'n/a' = method does not apply" in page
     from crossval.methods import METHODS
+    from crossval.report import _agreement_row
 
     st = rep.studies["square"]
     fin = {m: st.results[(m, max(r.resolution for r in st.rows if r.method == m))]
@@ -100,7 +111,7 @@ def test_report_text_explains_blank_cells(rendered):
     row, notes = _agreement_row(st.scene, st, fin, rep.checks["square"], list(METHODS))
     j = list(METHODS).index("fem_reference")
     assert math.isnan(row[j]) and notes[j] == "n/a"
-    assert notes[list(METHODS).index("bem_griffith")] == "own extrap."
+    assert "own extrap." in notes[list(METHODS).index("bem_griffith")]
 
 
 @pytest.mark.skipif(shutil.which("chromium") is None, reason="chromium is not installed")
