@@ -81,7 +81,7 @@ ESTIMATE_CASES = [(homogeneous(nu), 2.0, 4) for nu in (-0.5, 0.0, 0.3, 0.5)] + [
 def test_error_estimate_bounds_the_error_and_is_sharp(material, grading, order):
     """accuracy_estimate (the largest per-quantity bound) lies between the true largest error
     of K, F_A, d_c and ten times it; each bound covers its own quantity.  The degree-pair
-    factors come from benchmarks/study_fem.py (estimate / error 1.4 - 4.4 over its cases)."""
+    factors come from benchmarks/study_fem.py (estimate / error 1.8 - 3.7 over its cases)."""
     r = solved(material, grading, order)
     err = errors(r, material, 0.7, 0.3)
     for q in QUANTITIES:
@@ -100,8 +100,12 @@ def test_incompressible_does_not_lock_and_converges():
 
 
 def test_energy_release_rate_two_ways():
+    """The stiffness derivative against the compliance derivative, K(a + delta) - K(a - delta)
+    over 2 delta = 2e-4 a: that difference of two solves magnifies their relative precision
+    (their reaction defects: 1e-11 to 6e-10 on graded meshes) 5,000-fold, so they agree to a few 1e-6 at best
+    (measured -1.0e-6); a wrong derivative is off at O(1)."""
     u = fr.unit_solution(Material(0.25, 1 / 2.25), fr.FemSettings(grading=2.0, compliance_check=True))
-    assert u.dK_vce == pytest.approx(u.dK_compliance, rel=1e-6)
+    assert u.dK_vce == pytest.approx(u.dK_compliance, rel=5e-6)
 
 
 @pytest.mark.parametrize("k,tol", [(0.25, 1e-4), (0.5, 1e-4), (0.75, 1e-3)])   # the issue's targets
