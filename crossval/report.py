@@ -217,7 +217,7 @@ def report(out_dir="report", *, quick: bool = True, workers: int = 1, scheduler=
     data["wall_time_s"] = wall
     page = (
         "<!doctype html><meta charset='utf-8'><title>adhesive-punch method comparison</title>"
-        "<style>body{font-family:sans-serif;max-width:1300px;margin:auto}table{border-collapse:collapse}"
+        "<style>body{font-family:sans-serif;max-width:1300px;margin:auto}img{max-width:100%;height:auto}table{border-collapse:collapse}"
         "td,th{border:1px solid #ccc;padding:2px 6px;font-size:13px}.fail{color:#b00}.ok{color:#060}</style>"
         f"<h1>Method comparison ({'quick' if quick else 'full'} suite)</h1>"
         f"<p>package {package_version()}; {len(names)} scenes; {'all checks passed' if passed else 'SOME CHECKS FAILED'}; "

@@ -122,19 +122,22 @@ def test_page_renders_in_headless_chromium_with_every_figure_loaded(rendered):
     probe.write_text((out / "index.html").read_text() + (
         "<script>window.addEventListener('load', () => {const p = document.createElement('pre');"
         "p.id = 'sizes'; p.textContent = JSON.stringify([...document.images].map("
-        "i => [i.complete, i.naturalWidth, i.naturalHeight])); document.body.appendChild(p);});</script>"))
+        "i => [i.complete, i.naturalWidth, i.naturalHeight, i.getBoundingClientRect().right,"
+        " document.documentElement.clientWidth])); document.body.appendChild(p);});</script>"))
     with tempfile.TemporaryDirectory() as profile:
         r = subprocess.run(
             ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
              "--disable-background-networking", "--disable-component-update", "--disable-sync",
-             f"--user-data-dir={profile}", "--virtual-time-budget=5000", "--dump-dom", probe.as_uri()],
+             f"--user-data-dir={profile}", "--window-size=1000,800", "--virtual-time-budget=5000", "--dump-dom", probe.as_uri()],
             capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stderr[-2000:]
     start = r.stdout.index('<pre id="sizes">') + len('<pre id="sizes">')
     sizes = json.loads(r.stdout[start:r.stdout.index("</pre>", start)])
     assert len(sizes) == 1 + len(SCENES)
-    for complete, w, h in sizes:
+    for complete, w, h, right, page_width in sizes:
         assert complete and w > 100 and h > 100
+        # scaled to the page, not cut off at the window's edge (legends sit at the right)
+        assert right <= page_width + 1
 
 
 # --- the rate logic -----------------------------------------------------------------------
