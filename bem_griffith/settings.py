@@ -52,7 +52,7 @@ class Settings:
     graded_criterion
         Graded bodies only: ``"calibrated"`` (default) divides Eq. 42's sigma_c by r(k), the
         factor by which the flat circle's pull-off under it misses Eq. 39, relative to the
-        homogeneous circle on the same grid (``bem_griffith.criterion``, -0.75 <= k <= 0.75);
+        homogeneous circle on the same grid (``bem_griffith.criterion``, -0.95 <= k <= 0.95);
         ``"eq42"`` keeps the theory sheet's constant (any k).
     """
 

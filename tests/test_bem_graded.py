@@ -7,7 +7,7 @@ import pytest
 
 import bem_griffith as bg
 import contact_scene as cs
-from bem_griffith.criterion import CIRCLE_RATIO, calibration
+from bem_griffith.criterion import CIRCLE_FIRST_ORDER, CIRCLE_RATIO, calibration, interpolate
 from bem_griffith.kernel import graded_square_integral, love_square_integral
 from contact_scene import theory as T
 from square_quadrature import square_integral_reference
@@ -35,7 +35,7 @@ def test_k0_equals_homogeneous_incompressible():
     assert a.stiffness == pytest.approx(b.stiffness, rel=1e-10)
 
 
-@pytest.mark.parametrize("k", [-0.75, -0.5, -0.25, 0.25, 0.5, 0.75])
+@pytest.mark.parametrize("k", [-0.95, -0.9, -0.75, -0.5, -0.25, 0.25, 0.5, 0.75, 0.9, 0.95])
 def test_graded_circle_stiffness_matches_eq34(k):
     # Eq. 34; the staircase and the uniform-pressure elements give a first-order error
     sc = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, k), cs.Adhesion(1.0))
@@ -52,7 +52,7 @@ def _circle(k):
     return cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, k), cs.Adhesion(1.0))
 
 
-@pytest.mark.parametrize("k", [-0.5, 0.5])
+@pytest.mark.parametrize("k", [-0.95, -0.5, 0.5, 0.95])
 def test_calibration_only_rescales(k):
     """A flat punch pulled from touching is linear between events with thresholds ~ sigma_c:
     the calibrated run has the same contact sets and every force divided by r(k)."""
@@ -88,17 +88,56 @@ def test_calibrated_circle_follows_the_homogeneous_one(k):
         assert abs(d_ratio - 1) <= 0.5 / N + u / r + 0.3 / N
 
 
-def test_calibration_is_continuous_at_k0_and_refuses_outside_its_range():
-    """r(0) = 1 is Eq. 22, validated on Kendall's circle; the measured neighbours at
-    k = +-0.25 must bracket it, and the monotone interpolant must pass through it smoothly."""
-    lo, hi = CIRCLE_RATIO[-0.25][0], CIRCLE_RATIO[0.25][0]
-    assert lo < 1.0 < hi
-    ks = np.linspace(-0.1, 0.1, 21)
-    rs = np.array([calibration(x)[0] for x in ks])
-    assert np.all(np.diff(rs) > 0) and calibration(0.0)[0] == pytest.approx(1.0, abs=1e-12)
-    with pytest.raises(cs.SceneError, match="settings.graded_criterion"):
-        calibration(0.9)
-    # without adhesion the criterion is never used: no refusal
-    press = bg.press(cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, 0.9), cs.Adhesion(0.0)),
-                     bg.Settings(grid=cs.Grid(elements_per_radius=8)))
-    assert press.stiffness > 0
+@pytest.mark.parametrize("k", [-0.9, 0.9])
+def test_calibrated_circle_follows_the_fitted_first_order_approach(k):
+    """Beyond |k| = 0.75 (where the kernel r^-(1+k) is nearly flat, k = -0.9, or nearly
+    r^-2, k = 0.9): on grids not in the sweep, the calibrated circle's pull-off relative to
+    Eq. 39 over the homogeneous circle's relative to Kendall (both scaled to the nominal area,
+    as in the fit) is 1 + (c / r) / N within the calibration's uncertainty u / r.  The two
+    solves are independent of the sweep's; a wrong r, or a c/N fit that does not describe
+    the grids between its points, fails.  (Eq. 42's constant alone misses by 64 % at
+    k = -0.9.)"""
+    r, u = calibration(k)
+    for N in (40, 56):
+        st = bg.Settings(grid=cs.Grid(elements_per_radius=N))
+        g, h = bg.solve(_circle(k), st), bg.solve(_circle(0.0), st)
+        assert g.converged and h.converged
+
+        def scaled(res, kk):
+            area = res.info["face_elements"] * res.grid_spacing**2
+            return T.force_at_nominal_area(res.pulloff_force, area=area, nominal_area=np.pi, k=kk) / (
+                T.graded_adhesion_force(E0=1.0, c0=1.0, k=kk, radius=1.0, work=1.0))
+
+        ratio = scaled(g, k) / scaled(h, 0.0)
+        assert abs(ratio - (1 + CIRCLE_FIRST_ORDER[k] / N)) <= u / r, (N, ratio)
+
+
+def test_calibration_refuses_outside_its_range():
+    """The calibrated criterion covers the measured -0.95 <= k <= 0.95 and says so beyond;
+    the sheet's constant stays available there, and a scene without adhesion never uses the
+    criterion, so it is not refused."""
+    st = bg.Settings(grid=cs.Grid(elements_per_radius=8))
+    for k in (-0.96, 0.96):
+        with pytest.raises(cs.SceneError, match=r"settings.graded_criterion.*-0.95 <= k <= 0.95") as e:
+            bg.solve(_circle(k), st)
+        assert "eq42" in str(e.value) and f"{k:g}" in str(e.value)
+        assert bg.solve(_circle(k), dataclasses.replace(st, graded_criterion="eq42")).pulloff_force > 0
+        press = bg.press(cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, k), cs.Adhesion(0.0)), st)
+        assert press.stiffness > 0
+    for k in (-0.95, 0.95):
+        assert calibration(k) == pytest.approx(CIRCLE_RATIO[k], rel=1e-12)
+
+
+def test_interpolation_predicts_each_measured_exponent_from_the_others():
+    """Each measured r(k), k = 0 included (Eq. 22, validated on Kendall's circle, r = 1 with
+    no fit), predicted by the interpolant through the other entries, i.e. across a gap twice
+    the table's: within the two uncertainties.  Checks that the entries lie on one smooth
+    curve (k -> 0 continuity among them) and that the interpolation follows r's square-root
+    end at k = -1 (a monotone cubic in r itself misses k = -0.75 by 5.7 %)."""
+    ks = np.array(sorted(CIRCLE_RATIO))
+    r = np.array([CIRCLE_RATIO[x][0] for x in ks])
+    u = np.array([CIRCLE_RATIO[x][1] for x in ks])
+    for i in range(1, len(ks) - 1):
+        keep = np.arange(len(ks)) != i
+        r_pred, u_pred = interpolate(ks[keep], r[keep], u[keep], ks[i])
+        assert abs(r_pred - r[i]) <= u[i] + u_pred, (ks[i], r_pred, r[i])
