@@ -185,3 +185,30 @@ def test_first_order_extrapolation_recovers_the_limit_and_bounds_its_error():
     wiggly = 2.0 + 0.5 / N + 0.01 * np.array([1, -1, 1, -1, 1])
     lim, err = extrapolate_first_order(N, wiggly)
     assert abs(lim - 2.0) <= err and err > 0.005
+
+
+def test_without_a_closed_form_a_circle_is_measured_against_the_fem(monkeypatch):
+    """The FEM covers the circle: it is the reference (its estimate the error bar), its own
+    runs are not measured, and the Griffith runs are measured against it."""
+    import sys
+
+    from crossval.suite import SUITE
+
+    study_module = sys.modules["crossval.study"]    # the package's ``study`` is the function
+
+    monkeypatch.setattr(study_module, "reference_values", lambda scene: {})
+    st = study_module.study(SUITE["incompressible_circle"], methods=["bem_griffith", "fem_reference"],
+                            resolutions={"bem_griffith": (8, 12, 16), "fem_reference": (0.5,)})
+    ref = st.reference_info
+    assert ref.kind == "fem" and ref.own_method == "fem_reference" and 0 < ref.uncertainty < 1e-3
+    fem = st.results[("fem_reference", 0.5)]
+    assert st.reference == fem.pulloff_force
+    assert all(math.isnan(r.error) for r in st.rows if r.method == "fem_reference")
+    assert st.convergence["fem_reference"].kind == "none"
+    # the FEM agrees with Kendall to 1e-5 (README), so the Griffith errors are Kendall's within that
+    from crossval.compare import reference_values
+
+    F_K = reference_values(SUITE["incompressible_circle"])["pulloff_force"]
+    for r in st.rows:
+        if r.method == "bem_griffith":
+            assert r.error == pytest.approx(abs(r.value / F_K - 1), abs=1e-4)
