@@ -151,7 +151,9 @@ def plot_error_vs_time(study, ax=None):
     ax.set_xlim(xs[0] / xpad, xs[-1] * xpad * (1.6 if not timed else 1.0))
     if timed:
         ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
-        ax.xaxis.set_minor_formatter(NullFormatter())
+        ax.xaxis.set_minor_locator(LogLocator(base=10, subs=(2, 5)))
+        # within about a decade a single major tick would be the axis' only number
+        ax.xaxis.set_minor_formatter(FuncFormatter(lambda v, _: f"{v:g}") if xs[-1] / xs[0] < 20 else NullFormatter())
         ax.set_xlabel("wall time [s]")
     else:
         ax.xaxis.set_major_locator(FixedLocator(xs))

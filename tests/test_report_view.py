@@ -212,3 +212,37 @@ def test_without_a_closed_form_a_circle_is_measured_against_the_fem(monkeypatch)
     for r in st.rows:
         if r.method == "bem_griffith":
             assert r.error == pytest.approx(abs(r.value / F_K - 1), abs=1e-4)
+
+
+def _labelled_ticks(axis):
+    lo, hi = sorted(axis.get_view_interval())
+    return [t.label1.get_text() for t in axis.get_major_ticks() + axis.get_minor_ticks()
+            if t.label1.get_visible() and t.label1.get_text() and lo <= t.get_loc() <= hi]
+
+
+@pytest.mark.parametrize("times", [(0.03, 0.05, 0.2), (0.6, 1.4, 3.0)])
+def test_error_panel_labels_its_axes_and_its_legend_hides_no_point(times):
+    """Errors within one decade (a few per cent) still get numbers on both axes, and the
+    legend sits outside the data; short runs are plotted against resolution instead."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from crossval import plotting
+    from crossval.study import ErrorReference, Study, StudyRow
+    from crossval.suite import SUITE
+
+    ref = ErrorReference(1.0, "Kendall", "closed form")
+    rows = tuple(StudyRow("bem_griffith", n, t, 1 + e, e, e) for n, t, e in zip((8, 12, 16), times, (0.03, 0.02, 0.012)))
+    st = Study(SUITE["kendall_circle"], "pulloff_force", 1.0, ref.name, rows, reference_info=ref)
+    fig, ax = plt.subplots(layout="constrained")
+    plotting.plot_error_vs_time(st, ax)
+    fig.canvas.draw()
+    assert len(_labelled_ticks(ax.yaxis)) >= 2 and len(_labelled_ticks(ax.xaxis)) >= 2
+    assert ax.get_xlabel().startswith("wall time") == (min(times) >= 0.5)
+    legend = ax.get_legend().get_window_extent()
+    points = ax.transData.transform([(line.get_xdata()[0], line.get_ydata()[0]) for line in ax.lines])
+    assert not any(legend.contains(x, y) for x, y in points)
+    assert not legend.overlaps(ax.get_window_extent())
+    plt.close(fig)
