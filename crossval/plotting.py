@@ -93,8 +93,8 @@ def _resolution_meaning(study, method) -> str:
 
 def plot_error_vs_time(study, ax=None):
     """One line per method: the relative error of the studied quantity against wall time, or
-    against resolution with each run's time written next to it when the runs are too short
-    for their timings to mean anything (``study.TIME_NOISE_FLOOR_S``).
+    against resolution with each run's time written next to it when the timings mean nothing:
+    runs shorter than ``study.TIME_NOISE_FLOOR_S``, or times not growing with resolution.
 
     The error is against ``study.reference_info``; its error bar is drawn as a grey band
     (errors inside it are not resolved and are drawn hollow).  Without a reference the panel
