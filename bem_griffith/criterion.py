@@ -20,8 +20,8 @@ and its uncertainty; other faces inherit the factor, as every face does at k = 0
 Interpolation between the measured exponents: kappa(k) of Eq. 42 vanishes like sqrt(1 + k)
 as k -> -1 (C_k carries 1 / (1 + k), the two-square integral J_k tends to 1), while the
 constant the circle needs, kappa / r, stays finite (about 2.2 at k = -0.95).  So r itself
-has a square-root end, which a polynomial interpolant of r misses (monotone cubic through the
-other points: 5.7 % off at k = -0.75, 4.2 % at k = -0.9); s(k) = r / sqrt(1 + k) is smooth
+has a square-root end, which a polynomial interpolant of r misses (a monotone cubic in r
+predicts k = -0.9 from the other entries 4.2 % low); s(k) = r / sqrt(1 + k) is smooth
 over the whole range, 1.15 at k = -0.95 to 0.73 at k = 0.95, and is what is interpolated
 (monotone cubic; each entry predicted from the others, across gaps twice the table's, within
 0.12 %, tested).
