@@ -26,7 +26,7 @@ over the whole range, 1.15 at k = -0.95 to 0.73 at k = 0.95, and is what is inte
 (monotone cubic; each entry predicted from the others, across gaps twice the table's, within
 0.12 %, tested).
 
-Why a ratio to k = 0: F_A / F_A(Eq. 39) itself drifts down by about 0.5 % per doubling of the
+Why a ratio to k = 0: F_A / F_A(Eq. 39) itself drifts down by about 0.5-0.9 % per doubling of the
 resolution between 64 and 181 per radius for -0.95 <= k <= 0.75, k = 0 included (the most
 stressed staircase cells set the first detachments, and finer grids sample more of them); the
 ratio on the same grid moves by 0.1-1.6 % over 32-181 per radius and fits c/N to 0.2 %.  At
