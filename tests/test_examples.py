@@ -3,6 +3,37 @@ import contact_scene as cs
 from contact_scene import theory as T
 
 
+def picture_problems(fig) -> list[str]:
+    """What a reader of a gallery picture would stumble on: a panel whose decorations (tick
+    labels, axis labels, title) overlap a neighbouring panel's, a marker the legends do not
+    explain, a 2-D panel without a title."""
+    from matplotlib.lines import Line2D
+
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    panels = [ax for ax in fig.axes if ax.get_visible()]
+    insets = {id(c) for ax in panels for c in ax.child_axes}
+    panels = [ax for ax in panels if id(ax) not in insets]
+    problems = []
+    boxes = [ax.get_tightbbox(renderer) for ax in panels]
+    for i in range(len(panels)):
+        for j in range(i + 1, len(panels)):
+            if boxes[i].overlaps(boxes[j]):
+                problems.append(f"panels {i} and {j} overlap")
+    legends = [leg for ax in fig.axes for leg in ([ax.get_legend()] if ax.get_legend() else [])] + list(fig.legends)
+    explained = {h.get_marker() for leg in legends for h in leg.legend_handles if isinstance(h, Line2D)}
+    for i, ax in enumerate(fig.axes):
+        for line in ax.get_lines():
+            m = line.get_marker()
+            if m not in (None, "", "None", " ") and m not in explained:
+                problems.append(f"panel {i}: marker {m!r} is in no legend")
+        if ax.name != "3d" and id(ax) not in insets and not ax.get_title():
+            problems.append(f"panel {i} has no title")
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)                      # a test suite that keeps figures open warns (RuntimeWarning) past 20
+    return problems
+
 
 def test_kendall_example_agrees_with_theory():
     from examples.kendall_circle import run
@@ -21,6 +52,13 @@ def test_fig04_maxima_lie_between_the_bounds():
         lower = -o["incircle"][1]                       # F_A,lower / F_A,upper (Eq. 18 / Eq. 13)
         assert lower * (1 - 0.5 / N) < o["max"] < 1.0, name
         assert o["result"].converged and o["result"].detached
+    # the picture: the incircle markers are explained, nothing collides
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from examples.fig04_convex_shapes import plot
+
+    assert picture_problems(plot(out, resolution=N)) == []
 
 
 def test_fig10_elongated_faces_end_as_rounded_rectangles():
@@ -29,7 +67,11 @@ def test_fig10_elongated_faces_end_as_rounded_rectangles():
     out = run(aspects=(1, 4, 8), cells_across=16)
     assert out[1]["last_stable_fraction"] < 0.9                     # a square ends near its incircle
     for ar in (4, 8):                                               # elongated ones keep most of the face
-        assert out[ar]["last_stable_fraction"] > 0.8 > 3 * out[ar]["incircle_fraction"]
+        assert out[ar]["last_stable_fraction"] > 0.8
+        # ... as a rounded rectangle along the whole length, not the incircle (length 1 of ar)
+        ls = out[ar]["result"].last_stable
+        X, _ = ls.centres()
+        assert X[ls.contact].max() - X[ls.contact].min() > 0.9 * ar
     assert out[8]["last_stable_fraction"] > out[4]["last_stable_fraction"]
 
 
@@ -63,7 +105,8 @@ def test_fig16_graded_star_positive_k_peaks_early_negative_k_is_brittle():
 
     out = run(resolution=16)
     pos, neg = out[0.5], out[-0.5]
-    assert pos["last_force_over_max"] < 0.85 < 0.9 < neg["last_force_over_max"]
+    assert pos["last_force_over_max"] < 0.85                          # the maximum well before the end
+    assert neg["last_force_over_max"] > 0.9                           # brittle: the end is near the maximum
     assert neg["last_stable_area"] > pos["last_stable_area"] > pos["incircle_area"]
     for o in out.values():
         assert o["result"].converged and o["result"].detached
@@ -84,6 +127,9 @@ def test_fig05_star_detaches_from_the_tips_to_near_the_incircle():
     assert 1.0 <= d <= 1.1 and 1.0 <= F <= 1.4
     ax = plot_surface(out["mid"])
     assert ax.name == "3d"
+    from examples.fig05_star import plot
+
+    assert picture_problems(plot({"star": out})) == []                 # no tick labels across panels
     no_fields = out["result"].last_stable
     import pytest
 
@@ -129,14 +175,20 @@ def test_fig08_brushes_collapse_onto_one_master_curve_in_sqrt_phi():
 def test_fig09_power_law_star_gives_a_force_plateau():
     """Eq. 29: over a = 0.6 ... 0.9 of the outer radius the force varies by max/min = 1.16, 1.09,
     1.07, 1.07, 1.06 at 12, 16, 24, 32, 48 elements per core radius (falling with refinement),
-    where a disc's Kendall force would vary by 1.84."""
+    where a disc's Kendall force would vary by 1.84.  The exponent p of F ~ a^p fitted over
+    that window is 0 by Eq. 29 (a disc's is 3/2, Eq. 6); measured 0.20, 0.18, 0.07 at 12, 16,
+    24 per core radius, so the coarsest grid's value bounds it."""
+    import numpy as np
+
     from examples.fig09_constant_force import run
 
     out = run(resolution=24)
     r = out["result"]
     assert r.converged and r.detached
     assert len(out["force"]) >= 20                                    # the window is populated
-    assert out["plateau_spread"] <= 1.10 < out["disc_spread"]
+    assert out["plateau_spread"] <= 1.10
+    p = np.polyfit(np.log(out["radius"]), np.log(out["force"]), 1)[0]
+    assert abs(p) <= 0.2                                              # flat, not a disc's a^(3/2)
 
 
 def test_fig13_15_physical_units_show_the_papers_features():
@@ -163,6 +215,21 @@ def test_fig13_15_physical_units_show_the_papers_features():
     F2, d2 = o["maxima"][1]
     assert abs(F2 / T.kendall_adhesion_force(E_star=E, radius=r1, work=w) - 1) <= 0.5 * h_over_a
     assert abs(d2 / T.kendall_critical_approach(E_star=E, radius=r1, work=w) - 1) <= 0.5 * h_over_a
+    # the picture: contact maps in the curves' unit (mm), each spanning its face
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from examples.fig13_15_physical_units import MM, plot
+
+    fig = plot(out)
+    assert picture_problems(fig) == []
+    for ax, name in zip(fig.axes[3:6], out):
+        x0, x1, y0, y1 = ax.images[0].get_extent()
+        fx0, fy0, fx1, fy1 = FACES[name][0].bounds
+        h = out[name]["result"].grid_spacing
+        assert "[mm]" in ax.get_xlabel() and "[mm]" in ax.get_ylabel()
+        assert x0 * MM <= fx0 + h and x1 * MM >= fx1 - h and y0 * MM <= fy0 + h and y1 * MM >= fy1 - h, name
+        assert (x1 - x0) * MM <= fx1 - fx0 + 8 * h, name              # the face fills the map: same unit
     # unit scaling: the SI solve equals the scaled solve times sqrt(E* w L^3), to solver tolerance
     L = 0.01
     st = bg.Settings(grid=cs.Grid(elements_per_radius=12))
