@@ -366,14 +366,20 @@ def study_cmd(file, method_names, resolutions, quantity, workers, as_json):
     if as_json:
         click.echo(json_dumps({"scene": sc.name, "quantity": quantity, "reference": st.reference,
                                "reference_name": st.reference_name, "rates": st.rates, "time_rates": st.time_rates,
+                               "reference_kind": st.reference_info.kind,
+                               "reference_uncertainty": st.reference_info.uncertainty,
+                               "convergence": {m: c.to_json() for m, c in st.convergence.items()},
+                               "time_convergence": {m: c.to_json() for m, c in st.time_convergence.items()},
                                "rows": [r.__dict__ for r in st.rows]}))
         return
     click.echo(f"{quantity} of {sc.name}: error against {st.reference_name} ({st.reference:.8g})")
     click.echo(f"{'method':<16}{'resolution':>11}{'value':>15}{'rel. error':>12}{'wall s':>9}")
     for r in st.rows:
         click.echo(f"{r.method:<16}{r.resolution:>11.4g}{r.value:>15.8g}{r.error:>12.3e}{r.wall_time_s:>9.2f}")
-    for m, v in st.rates.items():
-        click.echo(f"{m}: error ~ resolution^-{v:.2f}, ~ time^-{st.time_rates[m]:.2f}")
+    for m, c in st.convergence.items():
+        t = st.time_convergence[m]
+        click.echo(f"{m}: {c.text}" + (f"; error ~ time^-{t.order:.2f}" if t.kind == "order"
+                                       else f"; no exponent in time ({t.reason})" if c.kind == "order" else ""))
 
 
 if __name__ == "__main__":  # pragma: no cover
