@@ -3,7 +3,6 @@ iterations, time, the last message.  Printed by ``benchmarks/bench_extreme.py`` 
 in the full report."""
 from __future__ import annotations
 
-import dataclasses
 import time
 
 import contact_scene as cs
@@ -54,8 +53,8 @@ def extreme_cases(*, callback=None) -> list[tuple]:
     for k in (0.9, 0.95, -0.9, -0.95):
         m = cs.PowerLawGraded(1.0, 1.0, k)
         K = T.graded_stiffness(E0=1.0, c0=1.0, k=k, radius=1.0)
-        # beyond the calibrated range of the graded criterion: the sheet's Eq. 42 (stiffness rows)
-        r, dt = _timed(bg.solve, circle(m), dataclasses.replace(griffith32, graded_criterion="eq42"))
+        # stiffness rows: the criterion does not enter the stiffness (calibrated to |k| = 0.95)
+        r, dt = _timed(bg.solve, circle(m), griffith32)
         add(_row(f"k = {k}", "bem_griffith", r, K, dt))
         if k > 0:
             r, dt = _timed(fr.solve, circle(m), fr.FemSettings(grading=2.0))

@@ -1,4 +1,5 @@
 """Stiff and extreme cases: finite, converged (or saying why not), never NaN."""
+import dataclasses
 import math
 
 import numpy as np
@@ -25,13 +26,16 @@ def test_fem_does_not_lock_as_nu_tends_to_half(nu):
 @pytest.mark.parametrize("k", [0.9, 0.95, -0.9, -0.95])
 def test_graded_bem_near_the_limits_is_finite_and_stiffness_holds(k):
     mat = cs.PowerLawGraded(1.0, 1.0, k)
-    with pytest.raises(cs.SceneError, match="settings.graded_criterion"):
-        bg.solve(circle(mat), bg.Settings(grid=cs.Grid(elements_per_radius=16)))   # outside the calibration
-    r = bg.solve(circle(mat), bg.Settings(grid=cs.Grid(elements_per_radius=16), graded_criterion="eq42"))
+    st = bg.Settings(grid=cs.Grid(elements_per_radius=16))
+    r = bg.solve(circle(mat), st)   # inside the calibration, -0.95 <= k <= 0.95
     assert r.converged and np.all(np.isfinite(r.curve.force)) and r.pulloff_force > 0
+    assert r.info["graded_criterion"] == "calibrated"
     # Eq. 34 to the first-order envelope of the stiffness sweep (0.15/N)
     assert r.stiffness == pytest.approx(T.graded_stiffness(E0=1.0, c0=1.0, k=k, radius=1.0), rel=0.15 / 16)
-    assert any("not calibrated" in m for m in r.messages)
+    e = bg.solve(circle(mat), dataclasses.replace(st, graded_criterion="eq42"))
+    assert e.converged and any("not calibrated" in m for m in e.messages)
+    with pytest.raises(cs.SceneError, match="settings.graded_criterion"):
+        bg.solve(circle(cs.PowerLawGraded(1.0, 1.0, math.copysign(0.96, k))), st)   # outside it
 
 
 def test_tiny_and_huge_work_of_adhesion_are_reported():
