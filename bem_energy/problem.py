@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.fft as sfft
 
-from bem_griffith.kernel import graded_influence, love_influence
+from halfspace.kernel import graded_influence, love_influence
 from contact_scene import Homogeneous, PowerLawGraded, Scene, SceneError, rasterise
 
 from .potentials import Potential, process_zone_exponent, process_zone_length, process_zone_modulus

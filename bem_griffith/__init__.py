@@ -1,6 +1,5 @@
 """Pohrt-Popov adhesive boundary-element method on a square grid (FFT convolution)."""
-from .kernel import love_influence, love_square_integral
-from .operator import HalfSpaceOperator
+from halfspace import HalfSpaceOperator, love_influence, love_square_integral
 from .settings import Settings
 from .solver import PressResult, press, solve, solve_with_resolution
 

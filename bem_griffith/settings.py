@@ -7,7 +7,7 @@ from contact_scene import Grid, SceneError
 from contact_scene.errors import check_choice, check_int, check_real
 
 from .criterion import CRITERIA
-from .operator import default_workers
+from halfspace.operator import default_workers
 
 __all__ = ["Settings"]
 

@@ -31,11 +31,11 @@ from contact_scene import (Curve, Homogeneous, PowerLawGraded, Result, Scene, Sc
                            rasterise_periodic, theory)
 from contact_scene.discretisation import Grid
 
-from .kernel import (graded_influence, lattice_symbol, love_influence, love_influence_periodic, padded_shape,
-                     point_kernel_transform)
+from halfspace.kernel import (graded_influence, lattice_symbol, love_influence, love_influence_periodic, padded_shape,
+                              point_kernel_transform)
 from .criterion import calibration, stress_factor
 from .linear import conjugate_gradient
-from .operator import HalfSpaceOperator
+from halfspace.operator import HalfSpaceOperator
 from .settings import Settings
 
 __all__ = ["solve", "solve_with_resolution", "press", "PressResult", "Problem", "build_problem"]

@@ -14,7 +14,7 @@ from _timing import median_time, table
 
 import bem_griffith as bg
 import contact_scene as cs
-from bem_griffith.kernel import graded_influence, love_influence, padded_shape
+from halfspace.kernel import graded_influence, love_influence, padded_shape
 
 
 def main(N: int = 48):

@@ -18,7 +18,7 @@ import scipy.fft as sfft
 
 import bem_griffith as bg
 import contact_scene as cs
-from bem_griffith.kernel import padded_shape
+from halfspace.kernel import padded_shape
 
 
 def bare_conv_time(nx, ny) -> float:

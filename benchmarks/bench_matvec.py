@@ -12,8 +12,8 @@ import _timing  # noqa: F401  (sets thread counts before numpy loads)
 import numpy as np
 import scipy.fft as sfft
 
-from bem_griffith.kernel import love_influence, padded_shape
-from bem_griffith.operator import HalfSpaceOperator, default_workers
+from halfspace.kernel import love_influence, padded_shape
+from halfspace.operator import HalfSpaceOperator, default_workers
 
 
 def main(sizes=(64, 130, 258, 514)):

@@ -8,7 +8,7 @@ import pytest
 import bem_griffith as bg
 import contact_scene as cs
 from bem_griffith.criterion import CIRCLE_FIRST_ORDER, CIRCLE_RATIO, calibration, interpolate
-from bem_griffith.kernel import graded_square_integral, love_square_integral
+from halfspace.kernel import graded_square_integral, love_square_integral
 from contact_scene import theory as T
 from square_quadrature import square_integral_reference
 

@@ -13,7 +13,7 @@ import pytest
 
 import bem_griffith as bg
 import contact_scene as cs
-from bem_griffith.kernel import (graded_influence, lattice_symbol, love_influence, love_influence_periodic, love_square_integral,
+from halfspace.kernel import (graded_influence, lattice_symbol, love_influence, love_influence_periodic, love_square_integral,
                                  padded_shape, point_kernel_transform)
 from contact_scene import theory as T
 from crossval.suite import SCENE_DIR
@@ -371,7 +371,7 @@ def test_periodic_kernel_carries_the_lattice_madelung_constant():
     """The zero-mean periodic coefficients differ from the isolated ones by the lattice sum:
     self-coefficient shift -> Delta^2 M0 / (pi E* L), M0 = 4 zeta(1/2) beta(1/2), with an
     element-size remainder O((Delta/L)^2) (measured 0.096 (Delta/L)^2)."""
-    from bem_griffith.kernel import MADELUNG_SQUARE, love_influence_periodic, love_square_integral
+    from halfspace.kernel import MADELUNG_SQUARE, love_influence_periodic, love_square_integral
 
     ns, errs = (8, 16, 32), []
     for n in ns:
@@ -388,8 +388,8 @@ def test_periodic_kernel_carries_the_lattice_madelung_constant():
 
 
 def test_periodic_operator_is_the_circular_convolution():
-    from bem_griffith.kernel import love_influence_periodic
-    from bem_griffith.operator import HalfSpaceOperator
+    from halfspace.kernel import love_influence_periodic
+    from halfspace.operator import HalfSpaceOperator
 
     n = 12
     C = love_influence_periodic(n, 0.1, 1.0, images=4)
@@ -409,7 +409,7 @@ def test_periodic_punch_array_matches_the_lattice_correction():
     values) - both up to the next term of the periodic Green's function, O((a/L)^3).  Same grid
     for both, so the staircase cancels.  Measured at 16 per radius, L/a = 4, 6, 8: K 7.5e-2,
     1.5e-2, 5.4e-3 off the prediction, F 3.0e-2, 8.7e-3, 3.7e-3 off the isolated force."""
-    from bem_griffith.kernel import MADELUNG_SQUARE as M0
+    from halfspace.kernel import MADELUNG_SQUARE as M0
 
     sc = circle_scene()
     E = sc.material.effective_modulus

@@ -23,7 +23,7 @@ class HalfSpaceOperator:
     """Displacement u (nx x ny) from pressure p (nx x ny) by linear convolution with the
     element influence coefficients, zero-padded (to at least 2n - 1) so the grid does not wrap.
 
-    ``kernel`` is laid out as :func:`bem_griffith.kernel.love_influence` returns it.  The
+    ``kernel`` is laid out as :func:`halfspace.kernel.love_influence` returns it.  The
     transforms are pruned: the input occupies only nx of the Mx padded rows and only nx rows
     of the output are wanted, so the row transforms run on nx rows, not Mx (about 3/4 of the
     work of a plain padded rfft2/irfft2 pair; measured in ``benchmarks/bench_matvec.py``).
@@ -71,7 +71,7 @@ class HalfSpaceOperator:
     def window(self, shape: tuple[int, int]) -> "HalfSpaceOperator":
         """The same operator on a smaller grid (wx x wy cells, any wx <= nx, wy <= ny): its
         coefficients are this kernel's for the offsets such a grid has, on the smaller padded
-        grid :func:`~bem_griffith.kernel.padded_shape` gives.  A contact set that fits into the
+        grid :func:`~halfspace.kernel.padded_shape` gives.  A contact set that fits into the
         smaller grid then costs its FFTs instead of the whole face's, with the same C_SS."""
         if self.periodic:
             raise ValueError("a periodic operator has no smaller window: its images fill the whole cell")
