@@ -15,9 +15,9 @@ the factor the estimator assumes (fem_reference.solver.order_ratio); rho x g for
 
 Measured (errors of K; estimate / largest error in brackets): homogeneous at grading 1
 8.4e-6 ... 1.1e-5 [2.6 - 4.1], rho 13.2 - 21.1; at grading 2 1.9e-5 ... 2.5e-5 [2.0 - 3.4],
-rho 13.0 - 18.7.  Graded at grading 1 (k = 0.25) 1.0e-5 [2.6], rho x g 10.3; at grading 2
-3.6e-5 (k = 0.9) ... 2.9e-4 (k = 0.25) [2.9 - 3.0], at grading 4 4.2e-4 ... 4.0e-3 [3.6 - 3.7],
-rho x g 11.6 - 12.8.
+rho 13.0 - 18.7.  Graded at grading 1 1.9e-6 (k = 0.9) ... 1.0e-5 (k = 0.25) [2.8 - 3.4],
+rho x g 9.2 - 11.0; at grading 2 3.6e-5 ... 2.9e-4 [3.4 - 3.5] and at grading 4
+4.2e-4 ... 4.0e-3 [4.5 - 4.6], rho x g 11.6 - 12.8.
 """
 from __future__ import annotations
 

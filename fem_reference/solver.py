@@ -191,18 +191,18 @@ def unit_solution(material: Material, settings: FemSettings, *, energy_release: 
 # errors of K and K' against Eqs. 1 and 34):
 #   isotropic mesh (homogeneous), degree 3 -> 4: 13.0 - 21.1 over nu = -0.5, 0, 0.3, 0.5 at
 #     grading 1 and 2: rho = 11; degree 2 -> 3: 19.2 - 28.8 (nu = 0, 0.3, 0.5): rho = 16.
-#   tensor mesh (graded), degree 3 -> 4: rho x grading = 10.3 - 14.6 over k = 0.25, 0.5, 0.75,
+#   tensor mesh (graded), degree 3 -> 4: rho x grading = 9.2 - 14.6 over k = 0.25, 0.5, 0.75,
 #     0.9 at grading 1, 2, 3, 4 (cells grow by 1 + grading, so one more degree gains about as
-#     much as the cell is small against its distance from the edge; the lowest, 10.3, is K' at
-#     k = 0.25 and grading 1): rho = 9 / grading; degree 2 -> 3: rho x grading = 11.9 - 18.2
-#     (k = 0.5, 0.9 at grading 2, 4): the same.
+#     much as the cell is small against its distance from the edge; 11.6 - 14.6 at grading
+#     2 - 4, 9.2 - 11.0 at grading 1, the lowest K' at k = 0.75): rho = 8 / grading;
+#     degree 2 -> 3: rho x grading = 11.9 - 18.2 (k = 0.5, 0.9 at grading 2, 4): the same.
 #   Below grading 1 the factor is held at its grading-1 value: it only grows as cells shrink,
 #   so the estimate stays a bound there (and overstates the error more).
-# With these, accuracy_estimate / largest error of (K, F_A, d_c) = 2.0 - 4.1 over the study's
-# cases (homogeneous at grading 1, 2; graded at 1 (k = 0.25), 2, 4); each bound / its own error
-# 1.2 - 2.1 for K and d_c (F_A's error is a near-cancellation of theirs, its bound their sum).
+# With these, accuracy_estimate / largest error of (K, F_A, d_c) = 2.0 - 4.6 over the study's
+# cases (homogeneous at grading 1, 2; graded at 1, 2, 4); each bound / its own error
+# 1.2 - 2.6 for K and d_c (F_A's error is a near-cancellation of theirs, its bound their sum).
 _RHO_ISOTROPIC = {(4, 3): 11.0, (3, 2): 16.0}
-_RHO_TENSOR = {(4, 3): 9.0, (3, 2): 9.0}
+_RHO_TENSOR = {(4, 3): 8.0, (3, 2): 8.0}
 MAX_ISOTROPIC_GRADING = 2.0
 
 

@@ -82,7 +82,7 @@ ESTIMATE_CASES = [(homogeneous(nu), 2.0, 4) for nu in (-0.5, 0.0, 0.3, 0.5)] + [
 def test_error_estimate_bounds_the_error_and_is_sharp(material, grading, order):
     """accuracy_estimate (the largest per-quantity bound) lies between the true largest error
     of K, F_A, d_c and ten times it; each bound covers its own quantity.  The degree-pair
-    factors come from benchmarks/study_fem.py (estimate / error 2.0 - 4.1 over its cases)."""
+    factors come from benchmarks/study_fem.py (estimate / error 2.0 - 4.6 over its cases)."""
     r = solved(material, grading, order)
     err = errors(r, material, 0.7, 0.3)
     for q in QUANTITIES:
@@ -163,7 +163,7 @@ def test_stiffness_converges_at_the_rate_of_the_element_order():
 
 
 def test_graded_estimate_covers_the_error_at_the_coarsest_grading():
-    """At grading 4 (the coarsest allowed) the degree pair converges slowest (rho = 9/4 is
+    """At grading 4 (the coarsest allowed) the degree pair converges slowest (rho = 8/4 is
     assumed); the estimate must still cover the error (measured k = 0.75: K error 1.24e-3)."""
     r = fr.solve(scene(cs.PowerLawGraded(1.0, 1.0, 0.75)), fr.FemSettings(grading=4.0))
     err = abs(r.stiffness / T.graded_stiffness(E0=1.0, c0=1.0, k=0.75, radius=1.0) - 1)
