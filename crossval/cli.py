@@ -211,8 +211,8 @@ def solve_cmd(file, method_name, resolution, range_, as_json):
 @main.command("compare")
 @click.argument("file", type=click.Path(dir_okay=False))
 @click.option("--resolution", type=float, default=None, help="BEM elements across sqrt(A/pi) (default 32).")
-@click.option("--quick", is_flag=True, help="The energy method's coarse zero-range sequence (seconds; allowed 7 % "
-              "on faces with corners) instead of its accurate default (minutes).")
+@click.option("--quick", is_flag=True, help="The energy method's coarse zero-range sequence (seconds, with an error "
+              "bar of about 8 %) instead of its accurate default (minutes, about 1-4 %).")
 @click.option("--json", "as_json", is_flag=True, help="Print the comparison as JSON.")
 @_scene_errors_exit_2
 def compare_cmd(file, resolution, quick, as_json):
