@@ -18,8 +18,9 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.fft as sfft
 
-from halfspace.kernel import graded_influence, love_influence
 from contact_scene import Homogeneous, PowerLawGraded, Scene, SceneError, rasterise
+from halfspace.collocation import collocated_graded_influence, collocated_influence
+from halfspace.kernel import graded_influence, love_influence
 
 from .potentials import Potential, process_zone_exponent, process_zone_length, process_zone_modulus
 
@@ -43,7 +44,7 @@ class EnergyProblem:
     origin: tuple[float, float]
     potential: Potential | None
     modulus: float            # E* (E_k = 1 / (pi A_k) for a graded body): sets the process zone
-    self_compliance: float    # C_00: displacement of an element under unit pressure on it
+    self_compliance: float    # C_00, the kernel's self coefficient: sets the minimisers' scales
     exponent: float = 0.0     # the grading exponent k (0: homogeneous)
 
     @property
@@ -89,8 +90,18 @@ class EnergyProblem:
         return A[: self.n[0], : self.n[1]]
 
 
+#: the half-space discretisations (``EnergySettings.kernel``): (homogeneous, graded) coefficients
+KERNELS = {"collocation": (collocated_influence, collocated_graded_influence),
+           "love": (love_influence, graded_influence)}
+
+
 def build_problem(scene: Scene, spacing: float, potential: Potential | None, *, memory: int = 10,
-                  max_memory_gb: float = 8.0) -> EnergyProblem:
+                  max_memory_gb: float = 8.0, kernel: str = "collocation") -> EnergyProblem:
+    """The discrete problem of ``scene`` on a grid of ``spacing``, with the half-space
+    discretised by ``kernel`` (see :class:`bem_energy.EnergySettings`)."""
+    if kernel not in KERNELS:
+        raise SceneError("settings.kernel", f"must be one of {', '.join(map(repr, sorted(KERNELS)))} (got {kernel!r})")
+    homogeneous, graded = KERNELS[kernel]
     shape = scene.indenter.shape
     raster = rasterise(shape, spacing)
     nx, ny = raster.shape
@@ -100,7 +111,7 @@ def build_problem(scene: Scene, spacing: float, potential: Potential | None, *, 
                          f"method (> {max_memory_gb:g}); coarsen the grid")
     # a square window of the kernel: truncating the Love kernel to an elongated window (2 nx x
     # 2 ny for a 4:1 rectangle) gave a circulant with negative eigenvalues; the square one
-    # stays positive definite (checked below)
+    # stays positive definite (checked below, for either kernel)
     n = max(nx, ny)
     # an FFT-friendly size: 2 n = 404 (4 x 101) took 7.5 ms per FFT pair, 405 took 2.8 ms
     m = sfft.next_fast_len(2 * n, real=True)
@@ -108,9 +119,9 @@ def build_problem(scene: Scene, spacing: float, potential: Potential | None, *, 
     mat = scene.material
     modulus = process_zone_modulus(mat)
     if isinstance(mat, Homogeneous):
-        K = love_influence(n, n, spacing, modulus, M)
+        K = homogeneous(n, n, spacing, modulus, M)
     elif isinstance(mat, PowerLawGraded):
-        K = graded_influence(n, n, spacing, mat.surface_modulus, mat.reference_depth, mat.exponent, M)
+        K = graded(n, n, spacing, mat.surface_modulus, mat.reference_depth, mat.exponent, M)
     else:  # pragma: no cover - Scene validates the material
         raise SceneError("material", f"unsupported material {type(mat).__name__}")
     symbol = sfft.rfft2(K).real

@@ -27,6 +27,18 @@ class EnergySettings:
         Newton's method on dense face matrices with the contact set from a convex QP solved
         by cvxpy, for small grids only (``max_face_elements_cvxpy``); a whole pull-off agrees
         with ``"pk"`` to the minimisers' tolerance (tests/test_energy_finite_range.py).
+    kernel
+        The discretisation of the half-space.  ``"collocation"`` (default): point-collocated
+        Boussinesq coefficients (A_k Delta^2 / r^(1+k) for a graded body) with the lattice-
+        consistent self term (``halfspace.collocation``), a discretisation of its own, so that
+        agreement with the Griffith solver, which uses Love's element integrals, checks both
+        kernels.  ``"love"``: Love's uniformly loaded squares (the graded analogue for a graded
+        body), the Griffith solver's kernel: on the same grid the two methods then solve the
+        same discrete elastic problem (same stiffness to the minimisers' tolerance).  The flat
+        circle's stiffness converges like 1/N with both, about -0.16/N (collocation) and
+        -0.12/N (Love) at the raster's area; on a common grid Love's squares are stiffer by
+        0.045/N to 0.069/N over the faces measured (benchmarks/study_halfspace_kernels.py,
+        tests/test_halfspace.py).
     steps
         Continuation steps over the default pull range; the snap-off is then located by
         bisection to ``snap_tolerance`` (relative to the Kendall approach of the face).
@@ -46,11 +58,13 @@ class EnergySettings:
     max_iterations: int = 50_000
     memory: int = 10
     max_face_elements_cvxpy: int = 700
+    kernel: str = "collocation"
 
     def __post_init__(self):
         if not isinstance(self.grid, Grid):
             raise SceneError("settings.grid", "must be a contact_scene.Grid")
         check_choice("settings.minimiser", self.minimiser, {"lbfgsb", "pk", "cvxpy"})
+        check_choice("settings.kernel", self.kernel, {"collocation", "love"})
         object.__setattr__(self, "steps", check_int("settings.steps", self.steps, lo=2, hi=100_000))
         object.__setattr__(self, "snap_tolerance", check_real("settings.snap_tolerance", self.snap_tolerance, lo=0, hi=0.1, lo_open=True))
         object.__setattr__(self, "gtol", check_real("settings.gtol", self.gtol, lo=0, hi=1e-2, lo_open=True))

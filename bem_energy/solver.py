@@ -230,7 +230,8 @@ def pull_off(scene: Scene, settings: EnergySettings, *, spacing: float | None = 
                          "use periodic = false")
     potential = potential if potential is not None else default_potential(scene)
     h = spacing if spacing is not None else settings.grid.spacing_for(scene.indenter.shape)
-    prob = build_problem(scene, h, potential, memory=settings.memory, max_memory_gb=max_memory_gb)
+    prob = build_problem(scene, h, potential, memory=settings.memory, max_memory_gb=max_memory_gb,
+                         kernel=settings.kernel)
     if settings.minimiser == "cvxpy" and int(prob.face.sum()) > settings.max_face_elements_cvxpy:
         raise SceneError("settings.minimiser", f"cvxpy is for small grids: {int(prob.face.sum())} face elements "
                          f"> {settings.max_face_elements_cvxpy}; use lbfgsb or pk")
