@@ -146,12 +146,13 @@ def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callb
     E = process_zone_modulus(scene.material)
     k = process_zone_exponent(scene.material)
     runs = []
-    for r in settings.ratios:
+    for i, r in enumerate(settings.ratios, 1):
         lc = r * a
         rho = range_for_process_zone(modulus=E, work=w, length=lc, exponent=k)
         spacing = min(lc / settings.elements_per_process_zone, a / settings.minimum_elements_per_radius)
         es = replace(settings.energy, grid=Grid(spacing=spacing))
-        log.info("bem_energy zero range: l_c/a = %g, rho = %.4g, Delta = %.4g", r, rho, spacing)
+        log.info("range %d of %d: l_c/a = %g (rho = %.4g, %d elements per radius)", i, len(settings.ratios), r, rho,
+                 round(a / spacing))
         res = pull_off(scene, es, spacing=spacing, potential=Potential(w, rho, settings.potential), callback=callback)
         runs.append((lc, rho, res))
     lcs = np.array([x[0] for x in runs])

@@ -75,10 +75,13 @@ class _LiveStatus:
                     lg.setLevel(logging.INFO)
         root = logging.getLogger()
         levels = [h.level for h in root.handlers]
+        filters = [f for h in root.handlers for f in h.filters]
         self._redirect = logging_redirect_tqdm()
         self._redirect.__enter__()
-        for h in root.handlers:             # tqdm's replacement handler does not keep the level
+        for h in root.handlers:             # tqdm's replacement handler keeps neither level nor filters
             h.setLevel(max(levels, default=logging.WARNING))
+            for f in filters:
+                h.addFilter(f)
         return self
 
     def point(self, method: str, approach: float, force: float, area: float) -> None:
@@ -130,6 +133,9 @@ def main(verbose):
     # the handler, not the loggers, decides what is printed: the live status line may raise a
     # solver logger to INFO to read its stage messages without printing them
     handler.setLevel(level)
+    if verbose == 1:
+        # -v is this package's progress; other libraries' INFO (scikit-fem's assembly) only with -vv
+        handler.addFilter(lambda r: r.levelno >= logging.WARNING or r.name.split(".")[0] in _SOLVER_LOGGERS)
     root = logging.getLogger()
     root.handlers[:] = [handler]
     root.setLevel(level)

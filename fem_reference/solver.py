@@ -152,8 +152,10 @@ def unit_solution(material: Material, settings: FemSettings, *, energy_release: 
                   mesh: MeshTri | None = None) -> UnitSolution:
     """The unit problem on ``mesh`` (default: :func:`build` of ``settings``)."""
     t0 = time.perf_counter()
+    log.info("meshing (grading %g)", settings.grading)
     mesh = build(material, settings) if mesh is None else mesh
     t1 = time.perf_counter()
+    log.info("assembling and solving: %d elements of degree %d", mesh.t.shape[1], settings.order)
     model = assemble(mesh, material, order=settings.order)
     x = solve_unit_approach(model)
     t2 = time.perf_counter()
@@ -278,6 +280,7 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
     else:
         d_c = 0.0
     F_A = K * abs(d_c)
+    log.info("error estimate: the unit problem one degree lower")
     est, comparison = error_estimates(u, mat, settings)
     timings = dict(u.timings)
     timings["error_estimate"] = sum(comparison.timings.values())
@@ -293,7 +296,8 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
     curve = Curve(np.array([0.0, d_c, d_c]), np.array([0.0, -F_A, 0.0]), np.array([math.pi * a * a] * 2 + [0.0]))
     if callback is not None:
         callback(d_c, -F_A, math.pi * a * a)
-    log.info("fem_reference: %d dofs, K^ = %.10g, dK^ vce %.10g compliance %.10g", u.dofs, u.stiffness, u.dK_vce, u.dK_compliance)
+    log.info("fem_reference: %d dofs, K^ = %.10g, dK^ vce %.10g compliance %s", u.dofs, u.stiffness, u.dK_vce,
+             "not computed" if u.dK_compliance is None else f"{u.dK_compliance:.10g}")
     return Result(
         method="fem_reference",
         pulloff_force=F_A,
