@@ -150,3 +150,18 @@ def test_calibrated_graded_pulloff_is_labelled_a_calibration_residual():
     # a homogeneous circle's Griffith pull-off is a validation
     hom = check_results(SUITE["kendall_circle"], {"bem_griffith": dataclasses.replace(fake, info={})})
     assert all(c.role == "validation" for c in hom)
+
+
+def test_long_solves_report_their_stage_with_v_and_stay_silent_without():
+    """-v on a non-terminal: the stage in words (range i of n) and periodic points; without it,
+    nothing on stderr (the libraries only log and call back)."""
+    args = [sys.executable, "-m", "crossval", "solve", "incompressible_circle", "--method", "bem_energy",
+            "--resolution", "1"]
+    loud = subprocess.run([*args[:3], "-v", *args[3:]], capture_output=True, text=True)
+    assert loud.returncode == 0, loud.stderr
+    for i in (1, 4):
+        assert f"range {i} of 4: l_c/a" in loud.stderr
+    assert "contact area" in loud.stderr and "skfem" not in loud.stderr
+    quiet = subprocess.run(args, capture_output=True, text=True)
+    assert quiet.returncode == 0 and quiet.stderr == ""
+    assert "pulloff_force" in quiet.stdout
