@@ -168,6 +168,22 @@ def _tolerances(scene: cs.Scene, method: str, result: cs.Result) -> dict:
     return tol
 
 
+#: The two BEMs' stiffness on one grid differs by their kernels' discretisation only (Love's
+#: squares against point collocation): +0.045/N ... +0.069/N over the flat circle, square (also
+#: at 45 degrees), triangle, 4:1 rectangle and star at N = 8 ... 64 elements per radius
+#: (benchmarks/study_halfspace_kernels.py; tests/test_halfspace.py), so 0.1/N; a 1 % error in
+#: either kernel moves the ratio by 1 % and fails it from N = 32 (tested).
+SAME_GRID_STIFFNESS = 0.1
+
+
+def _same_grid_bems(name_a: str, a: cs.Result, name_b: str, b: cs.Result) -> bool:
+    """The Griffith and the energy BEM on one grid (same element size, same staircase face)."""
+    if {name_a, name_b} != {"bem_griffith", "bem_energy"}:
+        return False
+    energy = a if name_a == "bem_energy" else b
+    return "zero_range" not in energy.info and math.isclose(a.grid_spacing, b.grid_spacing, rel_tol=1e-12)
+
+
 def _is_calibrated(scene: cs.Scene, result: cs.Result, quantity: str) -> bool:
     """Whether ``quantity`` of ``result`` was fitted to this very scene's closed form: the
     calibrated graded criterion's pull-off force on a flat circle (bem_griffith.criterion)."""
@@ -200,8 +216,11 @@ def check_results(scene: cs.Scene, results: dict) -> tuple[Check, ...]:
                 if q in ta and q in tb:
                     role = ("calibration" if _is_calibrated(scene, a, q) or _is_calibrated(scene, b, q)
                             else "validation")
+                    tol = ta[q] + tb[q]
+                    if q == "stiffness" and _same_grid_bems(names[i], a, names[j], b):
+                        tol = min(tol, SAME_GRID_STIFFNESS / (scene.indenter.shape.equivalent_radius / a.grid_spacing))
                     checks.append(Check(f"{names[i]} vs {names[j]}", q, getattr(a, q), getattr(b, q),
-                                        names[j], ta[q] + tb[q], role=role))
+                                        names[j], tol, role=role))
     return tuple(checks)
 
 

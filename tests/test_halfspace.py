@@ -164,14 +164,13 @@ def test_energy_settings_name_the_kernels():
 SAME_GRID_DIFFERENCE = 0.1
 
 
-def _bem_stiffness_ratio(N):
-    """K_griffith / K_energy for the non-adhesive flat square at N elements per radius, as
-    ``crossval compare`` checks it (the Check's ``difference``)."""
+def _bem_stiffness_check(N):
+    """``crossval compare``'s check of K_griffith against K_energy for the non-adhesive flat
+    square at N elements per radius."""
     sq = cs.Scene(cs.Indenter(cs.Square(2.0)), cs.Homogeneous(1.0, 0.0), cs.Adhesion(0.0, None, "exponential"))
     c = compare(sq, methods=["bem_griffith", "bem_energy"], resolution=N)
     (check,) = [ch for ch in c.checks if ch.method == "bem_griffith vs bem_energy" and ch.quantity == "stiffness"]
-    assert check.passed
-    return check.difference
+    return check
 
 
 def _scaled(f, factor):
@@ -183,17 +182,23 @@ def test_a_one_percent_kernel_error_shows_up_between_the_two_bems(monkeypatch, k
     """A 1 % error in either kernel's code moves the Griffith-vs-energy stiffness ratio of the
     flat square by about 1 %, against a same-grid difference between the unmutated kernels
     of 0.05/N (0.15 % at N = 32).  The stiffness scales as 1/C: the ratio moves by 0.99 %.
-    ``crossval compare``'s stiffness tolerance (0.15/N + sqrt(2)/N per method, for grids with
-    different staircases) is 10 % at N = 32 and passes the mutant too: the check here is on
-    the measured difference."""
+    ``crossval compare`` holds the two BEMs on one grid to that measured difference
+    (``crossval.compare.SAME_GRID_STIFFNESS``), so its check fails on the mutant."""
+    from crossval.compare import SAME_GRID_STIFFNESS
+
+    assert SAME_GRID_STIFFNESS == SAME_GRID_DIFFERENCE
     N = 32
-    base = _bem_stiffness_ratio(N)
+    check = _bem_stiffness_check(N)
+    base = check.difference
+    assert check.passed and check.tolerance == pytest.approx(SAME_GRID_DIFFERENCE / N)
     assert 0.01 / N <= abs(base) <= SAME_GRID_DIFFERENCE / N
     if kernel == "love":        # the element integral itself: every user of Love's squares sees it
         monkeypatch.setattr(hk, "love_square_integral", _scaled(hk.love_square_integral, 1.01))
     else:
         monkeypatch.setattr(hc, "_point_layout", _scaled(hc._point_layout, 1.01))
-    mutated = _bem_stiffness_ratio(N)
+    check = _bem_stiffness_check(N)
+    mutated = check.difference
+    assert not check.passed, "crossval compare missed a 1 % kernel error"
     assert abs((1 + mutated) / (1 + base) - 1) > 0.008
     assert abs(mutated) > 2 * SAME_GRID_DIFFERENCE / N
 
