@@ -188,6 +188,7 @@ def zero_range_circle():
     return be.solve(circle())     # no range: the zero-range limit, default settings
 
 
+@pytest.mark.slow   # the default sequence down to l_c = 0.01 a: about 3 minutes on one core
 def test_zero_range_circle_reaches_kendall_within_one_percent(zero_range_circle):
     """Issue target 1 %; benchmarks/study_energy_zero_range.py measured CIRCLE_DEFAULT with the
     default ratios, and the estimate covers it."""
