@@ -4,6 +4,7 @@ from __future__ import annotations
 import dataclasses
 import logging
 import sys
+import time
 from functools import wraps
 
 import click
@@ -85,8 +86,6 @@ class _LiveStatus:
         return self
 
     def point(self, method: str, approach: float, force: float, area: float) -> None:
-        import time
-
         self.bar.update(1)
         text = f"{method}: d = {approach:.5g}, F = {force:.5g}, contact area {area:.4g}"
         self.bar.set_postfix_str(text, refresh=False)
