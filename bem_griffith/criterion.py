@@ -112,5 +112,5 @@ def calibration(k: float) -> tuple[float, float]:
 
 
 def stress_factor(k: float, criterion: str) -> float:
-    """The factor on Eq. 42's sigma_c (``criterion`` as validated by ``Settings``)."""
+    """The factor on Eq. 42's sigma_c (``criterion`` as validated by ``GriffithSettings``)."""
     return 1.0 / calibration(k)[0] if criterion == "calibrated" and k != 0 else 1.0

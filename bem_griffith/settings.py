@@ -9,11 +9,11 @@ from contact_scene.errors import check_choice, check_int, check_real
 from .criterion import CRITERIA
 from halfspace.operator import default_workers
 
-__all__ = ["Settings"]
+__all__ = ["GriffithSettings"]
 
 
 @dataclass(frozen=True)
-class Settings:
+class GriffithSettings:
     """How the Pohrt-Popov BEM discretises and drives a scene.
 
     grid

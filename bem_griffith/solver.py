@@ -36,7 +36,7 @@ from halfspace.kernel import (graded_influence, lattice_symbol, love_influence, 
 from .criterion import calibration, stress_factor
 from .linear import conjugate_gradient
 from halfspace.operator import HalfSpaceOperator
-from .settings import Settings
+from .settings import GriffithSettings
 
 __all__ = ["solve", "solve_with_resolution", "press", "PressResult", "Problem", "build_problem"]
 
@@ -77,8 +77,8 @@ def _estimate_memory_gb(nx: int, ny: int) -> float:
 
 def max_elements_per_radius(scene: Scene, max_memory_gb: float | None = None) -> float:
     """The finest grid (elements per equivalent radius) whose memory estimate fits in
-    ``max_memory_gb`` (default: :class:`Settings`' limit), from the face's bounding box."""
-    limit = Settings().max_memory_gb if max_memory_gb is None else max_memory_gb
+    ``max_memory_gb`` (default: :class:`GriffithSettings`' limit), from the face's bounding box."""
+    limit = GriffithSettings().max_memory_gb if max_memory_gb is None else max_memory_gb
     shape = scene.indenter.shape
     xmin, ymin, xmax, ymax = shape.bounds
 
@@ -95,7 +95,7 @@ def max_elements_per_radius(scene: Scene, max_memory_gb: float | None = None) ->
     return math.floor(lo)
 
 
-def build_problem(scene: Scene, settings: Settings) -> Problem:
+def build_problem(scene: Scene, settings: GriffithSettings) -> Problem:
     mat = scene.material
     shape = scene.indenter.shape
     periodic = settings.grid.periodic
@@ -223,7 +223,7 @@ class _SetSolution:
         return float(cell * (d * self.x1.sum() - self.xh.sum()))
 
 
-def _solve_set(prob: Problem, S: np.ndarray, settings: Settings, warm: _SetSolution | None, counter: dict) -> _SetSolution:
+def _solve_set(prob: Problem, S: np.ndarray, settings: GriffithSettings, warm: _SetSolution | None, counter: dict) -> _SetSolution:
     win = _window(prob, S)
     if win is None:
         op, Sw, inverse = prob.op, S, prob.inverse_symbol
@@ -281,7 +281,7 @@ def _solve_set(prob: Problem, S: np.ndarray, settings: Settings, warm: _SetSolut
 # pressing without adhesion
 # ---------------------------------------------------------------------------
 
-def _press_to_approach(prob: Problem, d: float, settings: Settings, counter: dict) -> _SetSolution:
+def _press_to_approach(prob: Problem, d: float, settings: GriffithSettings, counter: dict) -> _SetSolution:
     """Non-adhesive contact at approach d: an active-set iteration (drop tensile elements,
     add penetrating ones, re-solve) from the geometric overlap; returns the solved state."""
     face = prob.face
@@ -305,7 +305,7 @@ def _press_to_approach(prob: Problem, d: float, settings: Settings, counter: dic
     raise RuntimeError("press: the active set did not settle")  # pragma: no cover
 
 
-def _press(prob: Problem, scene: Scene, settings: Settings, counter: dict) -> tuple[float, _SetSolution]:
+def _press(prob: Problem, scene: Scene, settings: GriffithSettings, counter: dict) -> tuple[float, _SetSolution]:
     """The approach reached by the press and the solved contact state there."""
     lo = scene.loading
     if prob.flat and (lo.press_approach is None or lo.press_approach <= 0) and lo.press_force is None:
@@ -346,10 +346,10 @@ class PressResult:
     origin: tuple[float, float]
 
 
-def press(scene: Scene, settings: Settings | None = None) -> PressResult:
+def press(scene: Scene, settings: GriffithSettings | None = None) -> PressResult:
     """Press without adhesion as the scene's loading says (a flat face: just touching) and
     return the state; no pull.  Cheap: stiffness studies (Eq. 9) need only this."""
-    settings = settings or Settings()
+    settings = settings or GriffithSettings()
     prob = build_problem(scene, settings)
     counter = _new_counter()
     d0, sol = _press(prob, scene, settings, counter)
@@ -416,7 +416,7 @@ def _next_event(prob: Problem, sol: _SetSolution, d: float, target: float) -> fl
     return float(best)
 
 
-def _cascade(prob: Problem, sol: _SetSolution, d: float, settings: Settings, counter: dict, msgs: list,
+def _cascade(prob: Problem, sol: _SetSolution, d: float, settings: GriffithSettings, counter: dict, msgs: list,
              direction: float = -1.0):
     """Detach / re-attach at fixed d until no element exceeds sigma_c and no gap is negative.
 
@@ -493,12 +493,12 @@ def _record_snapshot(prob, sol, want, taken, snaps, fields):
                               prob.spacing, prob.origin, p, u))
 
 
-def solve(scene: Scene, settings: Settings | None = None, *, callback=None) -> Result:
+def solve(scene: Scene, settings: GriffithSettings | None = None, *, callback=None) -> Result:
     """Press the scene's punch without adhesion, then pull it off; see the module doc.
 
     ``callback(approach, force, contact_area)`` is called at every recorded point.
     """
-    settings = settings or Settings()
+    settings = settings or GriffithSettings()
     t0 = time.perf_counter()
     prob = build_problem(scene, settings)
     counter = _new_counter()
@@ -616,4 +616,4 @@ def solve(scene: Scene, settings: Settings | None = None, *, callback=None) -> R
 def solve_with_resolution(scene: Scene, resolution: float | None, *, callback=None) -> Result:
     """The registry's entry: ``resolution`` = elements across sqrt(A/pi) (default 32)."""
     grid = Grid(elements_per_radius=resolution if resolution is not None else 32.0)
-    return solve(scene, Settings(grid=grid), callback=callback)
+    return solve(scene, GriffithSettings(grid=grid), callback=callback)

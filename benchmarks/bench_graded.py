@@ -26,7 +26,7 @@ def main(N: int = 48):
     for k in (0.5, -0.5):
         t = median_time(lambda: graded_influence(n, n, h, 1.0, 1.0, k, P), repeat=3)
         rows.append(("kernel set-up", f"k = {k:+g}", f"{t * 1e3:.1f} ms", f"{t / t_love:.1f}"))
-    settings = bg.Settings(grid=cs.Grid(elements_per_radius=N))
+    settings = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N))
     base = None
     for name, mat in (("homogeneous", cs.Homogeneous(0.75, 0.5)), ("k = +0.5", cs.PowerLawGraded(1.0, 1.0, 0.5)),
                       ("k = -0.5", cs.PowerLawGraded(1.0, 1.0, -0.5))):

@@ -48,7 +48,7 @@ def main(star512=False):
         cases.append(("star 512^2", star, 512 * star.indenter.shape.equivalent_radius / 2.0, 1))
     rows = []
     for name, sc, N, rep in cases:
-        st = bg.Settings(grid=cs.Grid(elements_per_radius=N))
+        st = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N))
         wall, r = time_solve(sc, st, rep)
         nx, ny = r.info["grid"]
         tb = bare_conv_time(nx, ny)
@@ -66,7 +66,7 @@ def main(star512=False):
                           ("full cascade", {"stop_when_certainly_detached": False}),
                           ("whole-grid FFTs", {"shrink_window": False}),
                           ("rtol 1e-8", {"rtol": 1e-8})]:
-            wall, r = time_solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=N), **kw), 3)
+            wall, r = time_solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N), **kw), 3)
             if ref is None:
                 ref, ref_wall = r, wall
             same = np.array_equal(r.curve.contact_area, ref.curve.contact_area)

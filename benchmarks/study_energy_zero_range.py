@@ -113,7 +113,7 @@ def griffith(name, Ns, angles):
         for ang in angles:
             s = cs.Transformed(shape, rotation_deg=ang) if ang else shape
             sc = cs.Scene(cs.Indenter(s), cs.Homogeneous(E, 0.0), cs.Adhesion(W))
-            r = bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=N)))
+            r = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)))
             vals.append(T.force_at_nominal_area(r.pulloff_force, area=cs.rasterise(s, r.grid_spacing).area,
                                                 nominal_area=shape.area) / upper(shape))
         rows.append([N] + [f"{v:.4f}" for v in vals] + [f"{np.mean(vals):.4f}", f"{time.perf_counter() - t:.0f}"])

@@ -37,7 +37,7 @@ def stress_factors(k: float, per_radius: int) -> tuple[float, float]:
     """(aligned-edge, largest) edge-cell pressure / (K_k Delta^((k-1)/2)), pressed state."""
     h = 1.0 / per_radius
     mat = cs.Homogeneous(0.75, 0.5) if k == 0 else cs.PowerLawGraded(1.0, 1.0, k)
-    prob = build_problem(cs.Scene(cs.Indenter(cs.Circle(1.0)), mat, cs.Adhesion(1.0)), bg.Settings(grid=cs.Grid(spacing=h)))
+    prob = build_problem(cs.Scene(cs.Indenter(cs.Circle(1.0)), mat, cs.Adhesion(1.0)), bg.GriffithSettings(grid=cs.Grid(spacing=h)))
     S = prob.face
     n = int(S.sum())
     A = spla.LinearOperator((n, n), matvec=lambda v: prob.op.apply_masked(v, S)[S])

@@ -39,7 +39,7 @@ def griffith(N):
     for k in (0.0, K):
         for name, face in FACES.items():
             r = bg.solve(cs.Scene(cs.Indenter(face), cs.PowerLawGraded(1.0, 1.0, k), cs.Adhesion(1.0)),
-                         bg.Settings(grid=cs.Grid(elements_per_radius=N), graded_criterion="eq42"))
+                         bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N), graded_criterion="eq42"))
             out[k, name] = T.force_at_nominal_area(r.pulloff_force, area=r.info["face_elements"] * r.grid_spacing**2,
                                                    nominal_area=math.pi, k=k)
     return out

@@ -27,7 +27,7 @@ def main(Ns=(16, 24, 32, 48, 64, 96, 128)):
     rows, kerr = [], []
     for N in Ns:
         t = time.perf_counter()
-        r = bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=N)))
+        r = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)))
         wall = time.perf_counter() - t
         a_r = math.sqrt(cs.rasterise(sc.indenter.shape, 1.0 / N).area / math.pi)
         Fr = T.kendall_adhesion_force(E_star=1.0, radius=a_r, work=1.0)

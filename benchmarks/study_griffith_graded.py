@@ -70,7 +70,7 @@ def fit(Ns, rho, p):
 
 
 def main(ks=tuple(k for k in sorted(CIRCLE_RATIO) if k != 0), Ns=(32, 45, 64, 90, 128, 181)):
-    eq42 = lambda N: bg.Settings(grid=cs.Grid(elements_per_radius=N), graded_criterion="eq42")  # noqa: E731
+    eq42 = lambda N: bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N), graded_criterion="eq42")  # noqa: E731
     base, rows = {}, []
     for N in Ns:
         r = _converged(bg.solve(circle(0.0), eq42(N)))
@@ -103,7 +103,7 @@ def main(ks=tuple(k for k in sorted(CIRCLE_RATIO) if k != 0), Ns=(32, 45, 64, 90
     b0 = scaled_ratio(bg.solve(circle(0.0), eq42(N)), 0.0)[1]
     for k in ks:
         a = bg.solve(circle(k), eq42(N))
-        b = bg.solve(circle(k), bg.Settings(grid=cs.Grid(elements_per_radius=N)))
+        b = bg.solve(circle(k), bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)))
         same = np.array_equal(a.curve.contact_area, b.curve.contact_area)
         check.append([f"{k:+.2f}", N, str(same), f"{a.pulloff_force / b.pulloff_force:.6f}",
                       f"{scaled_ratio(b, k)[1] - 1:+.4f}", f"{b0 - 1:+.4f}"])

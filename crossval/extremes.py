@@ -41,7 +41,7 @@ def extreme_cases(*, callback=None) -> list[tuple]:
     def circle(m, w=1.0, **kw):
         return cs.Scene(cs.Indenter(cs.Circle(1.0)), m, cs.Adhesion(w), **kw)
 
-    griffith32 = bg.Settings(grid=cs.Grid(elements_per_radius=32))
+    griffith32 = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=32))
     for nu in (0.49, 0.499, 0.4999, 0.5):
         m = cs.Homogeneous(1.0, nu)
         K = T.kendall_stiffness(E_star=m.effective_modulus, radius=1.0)
@@ -69,7 +69,7 @@ def extreme_cases(*, callback=None) -> list[tuple]:
         add(_row(f"w = {w:g}, l_c = 0.16 a", "bem_energy", r, 2.0, dt))
     for ar in (10, 20, 50):
         sc = cs.Scene(cs.Indenter(cs.Rectangle(float(ar), 1.0)), E, cs.Adhesion(1.0))
-        r, dt = _timed(bg.solve, sc, bg.Settings(grid=cs.Grid(spacing=1 / 8)))
+        r, dt = _timed(bg.solve, sc, bg.GriffithSettings(grid=cs.Grid(spacing=1 / 8)))
         add(_row(f"rectangle {ar}:1", "bem_griffith", r, None, dt))
         if ar <= 20:
             sc = cs.Scene(cs.Indenter(cs.Rectangle(float(ar), 1.0)), E, cs.Adhesion(1.0, 0.16 ** 0.5))

@@ -32,7 +32,7 @@ def jkr(resolutions=(16, 24, 32)) -> dict:
 
     out = {}
     for N in resolutions:
-        r = bg.solve(SPHERE, bg.Settings(grid=cs.Grid(elements_per_radius=N)))
+        r = bg.solve(SPHERE, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)))
         c = r.curve
         i = int(np.argmax(-c.force))
         sel = _receding(c)
@@ -44,7 +44,7 @@ def jkr(resolutions=(16, 24, 32)) -> dict:
         # eight sectors, max over min
         d_mid = 0.5 * (c.approach[0] + c.approach[i])
         r2 = bg.solve(dataclasses.replace(SPHERE, outputs=cs.Outputs(snapshots=(d_mid,))),
-                      bg.Settings(grid=cs.Grid(elements_per_radius=N)))
+                      bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)))
         out[N] = {"result": r, "max_deviation": float(dev.max()), "mean_deviation": float(dev.mean()),
                   "roundness": _roundness(r2.snapshots[0]), "spacing": r.grid_spacing}
     return out
@@ -73,7 +73,7 @@ def orientations(angles=(0.0, 15.0, 30.0, 45.0), N: float = 24) -> dict:
     for ang in angles:
         sq = cs.Square(2.0).rotated(ang)
         sc = cs.Scene(cs.Indenter(sq), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
-        out[ang] = bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=N)))
+        out[ang] = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)))
     return out
 
 

@@ -33,7 +33,7 @@ def run(N: float = 64) -> dict:
     out = {}
     for name, shape in SHAPES.items():
         sc = cs.Scene(cs.Indenter(shape), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0), name=name)
-        r = bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=N)))
+        r = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)))
         F_up = T.upper_bound_force(E_star=1.0, work=1.0, area=shape.area)
         d_up = T.upper_bound_approach(E_star=1.0, work=1.0, area=shape.area)
         a_in = shape.incircle().radius

@@ -39,7 +39,7 @@ def run(resolution: float = 16, *, fields: bool = False, shape=STAR) -> dict:
     import bem_griffith as bg
 
     scene = cs.Scene(cs.Indenter(shape), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
-    st = bg.Settings(grid=cs.Grid(elements_per_radius=resolution))
+    st = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=resolution))
     r = bg.solve(scene, st)
     c = r.curve
     A0 = c.contact_area[0]

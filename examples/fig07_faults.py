@@ -34,7 +34,7 @@ def run(cells_per_side: int = 40) -> dict:
     for name, kw in FAULTS.items():
         shape = cs.SquareWithFaults(side=1.0, **kw)
         sc = cs.Scene(cs.Indenter(shape), E, cs.Adhesion(1.0))
-        r = bg.solve(sc, bg.Settings(grid=cs.Grid(spacing=1.0 / cells_per_side)))
+        r = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(spacing=1.0 / cells_per_side)))
         phi = shape.area / shape.nominal_area
         up = T.upper_bound_force(E_star=1.0, work=1.0, area=shape.nominal_area, filling_factor=phi)
         out[name] = {"result": r, "phi": phi, "F": r.pulloff_force, "F_over_upper": r.pulloff_force / up}

@@ -48,7 +48,7 @@ def run(cells_per_side: int = 64, names=None) -> dict:
     for name in names or BRUSHES:
         shape = BRUSHES[name]
         scene = cs.Scene(cs.Indenter(shape), E, cs.Adhesion(1.0))
-        r = bg.solve(scene, bg.Settings(grid=cs.Grid(spacing=SIDE / cells_per_side)))
+        r = bg.solve(scene, bg.GriffithSettings(grid=cs.Grid(spacing=SIDE / cells_per_side)))
         phi = shape.area / SIDE**2
         ls = r.last_stable
         out[name] = {"result": r, "phi": phi, "F_over_lower": r.pulloff_force / F_low,

@@ -39,7 +39,7 @@ def run(resolution: float = 16, *, n_rays: int = 8, outer: float = 1.0, window=(
 
     star = cs.PowerLawStar(n_rays=n_rays, core_radius=R0, outer_radius=outer, samples=128)
     scene = cs.Scene(cs.Indenter(star), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
-    r = bg.solve(scene, bg.Settings(grid=cs.Grid(spacing=R0 / resolution)))
+    r = bg.solve(scene, bg.GriffithSettings(grid=cs.Grid(spacing=R0 / resolution)))
     F0 = math.sqrt(8 * math.pi * R0**3)
     c = r.curve
     a = contact_radius(c.contact_area)

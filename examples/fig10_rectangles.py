@@ -29,7 +29,7 @@ def run(aspects=(1, 2, 5, 10, 20), cells_across: int = 12) -> dict:
     for ar in aspects:
         shape = cs.Rectangle(float(ar), 1.0)
         sc = cs.Scene(cs.Indenter(shape), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0), name=f"rectangle {ar}:1")
-        r = bg.solve(sc, bg.Settings(grid=cs.Grid(spacing=1.0 / cells_across)))
+        r = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(spacing=1.0 / cells_across)))
         out[ar] = {
             "result": r,
             "max": r.pulloff_force / T.upper_bound_force(E_star=1.0, work=1.0, area=shape.area),
@@ -56,7 +56,7 @@ def run_tapered(cells_across: int = 12, **shape) -> dict:
     out = {}
     for name, face in (("tapered", strip), ("rectangle", rect)):
         sc = cs.Scene(cs.Indenter(face), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
-        r = bg.solve(sc, bg.Settings(grid=cs.Grid(spacing=1.0 / cells_across)))
+        r = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(spacing=1.0 / cells_across)))
         ls = r.last_stable
         X, _ = ls.centres()
         out[name] = {"result": r, "last_stable_fraction": ls.contact_area / face.area,

@@ -54,7 +54,7 @@ def run(resolution: float = 16, names=None, *, prominence: float = 0.02) -> dict
     out = {}
     for name in names or FACES:
         face, E_star, w = FACES[name]
-        r = bg.solve(scene(name), bg.Settings(grid=cs.Grid(elements_per_radius=resolution)))
+        r = bg.solve(scene(name), bg.GriffithSettings(grid=cs.Grid(elements_per_radius=resolution)))
         tension = -r.curve.force
         peaks, _ = find_peaks(np.r_[0.0, tension, 0.0], prominence=prominence * tension.max())
         peaks = peaks - 1

@@ -30,7 +30,7 @@ def run(resolution: float = 16, exponents=(0.5, -0.5)) -> dict:
     out = {}
     for k in exponents:
         sc = cs.Scene(cs.Indenter(STAR), cs.PowerLawGraded(1.0, 1.0, k), cs.Adhesion(1.0))
-        r = bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=resolution)))
+        r = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=resolution)))
         c = r.curve
         i = int(np.argmax(-c.force))
         A0 = c.contact_area[0]

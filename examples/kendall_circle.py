@@ -19,7 +19,7 @@ def run(resolution: float = 16, fem_grading: float = 2.0) -> dict:
     import fem_reference as fr
 
     scene = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
-    bem = bg.solve(scene, bg.Settings(grid=cs.Grid(elements_per_radius=resolution)))
+    bem = bg.solve(scene, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=resolution)))
     fem = fr.solve(scene, fr.FemSettings(grading=fem_grading))
     E = scene.material.effective_modulus
     return {

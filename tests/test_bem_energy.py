@@ -56,7 +56,7 @@ def test_no_adhesion_stiffness_equals_griffith_on_the_same_grid():
     sc = circle(work=0.0)
     N = 16
     r_e = be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=N), kernel="love"))
-    r_g = bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=N)))
+    r_g = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)))
     # the same discrete problem (same raster, same Love coefficients): agreement to tolerance
     assert r_e.stiffness == pytest.approx(r_g.stiffness, rel=1e-6)
     # and the staircase envelope of the Griffith study (0.15 Delta / a)
@@ -222,7 +222,7 @@ def _area_scaled_griffith(shape, N, angle):
 
     s = cs.Transformed(shape, rotation_deg=angle) if angle else shape
     sc = cs.Scene(cs.Indenter(s), cs.Homogeneous(1.0, 0.0), cs.Adhesion(W))
-    r = bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=N)))
+    r = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)))
     return T.force_at_nominal_area(r.pulloff_force, area=cs.rasterise(s, r.grid_spacing).area, nominal_area=shape.area)
 
 

@@ -28,7 +28,7 @@ def test_k0_equals_homogeneous_incompressible():
     E0 = 1.2
     g = cs.Scene(cs.Indenter(cs.Triangle.equilateral(2.0)), cs.PowerLawGraded(E0, 3.0, 0.0), cs.Adhesion(0.7))
     h = cs.Scene(cs.Indenter(cs.Triangle.equilateral(2.0)), cs.Homogeneous(E0, 0.5), cs.Adhesion(0.7))
-    st = bg.Settings(grid=cs.Grid(elements_per_radius=16), stop_when_certainly_detached=False)
+    st = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=16), stop_when_certainly_detached=False)
     a, b = bg.solve(g, st), bg.solve(h, st)
     assert a.pulloff_force == pytest.approx(b.pulloff_force, rel=1e-9)
     assert a.pulloff_approach == pytest.approx(b.pulloff_approach, rel=1e-9)
@@ -41,7 +41,7 @@ def test_graded_circle_stiffness_matches_eq34(k):
     sc = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, k), cs.Adhesion(1.0))
     errs = []
     for N in (16, 32):
-        r = bg.press(sc, bg.Settings(grid=cs.Grid(elements_per_radius=N)))
+        r = bg.press(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)))
         errs.append(abs(r.stiffness / T.graded_stiffness(E0=1.0, c0=1.0, k=k, radius=1.0) - 1))
     assert errs[1] < 0.1 / 32 * 1.5 and errs[0] < 0.1 / 16 * 1.5
 
@@ -56,7 +56,7 @@ def _circle(k):
 def test_calibration_only_rescales(k):
     """A flat punch pulled from touching is linear between events with thresholds ~ sigma_c:
     the calibrated run has the same contact sets and every force divided by r(k)."""
-    st = bg.Settings(grid=cs.Grid(elements_per_radius=20))
+    st = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=20))
     tri = cs.Scene(cs.Indenter(cs.Triangle.equilateral(2.0)), cs.PowerLawGraded(1.0, 1.0, k), cs.Adhesion(1.0))
     a = bg.solve(tri, dataclasses.replace(st, graded_criterion="eq42"))
     b = bg.solve(tri, st)
@@ -76,7 +76,7 @@ def test_calibrated_circle_follows_the_homogeneous_one(k):
     alone misses by 7-43 % here."""
     r, u = calibration(k)
     for N in (40, 56):
-        st = bg.Settings(grid=cs.Grid(elements_per_radius=N))
+        st = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N))
         g = bg.solve(_circle(k), st)
         h = bg.solve(_circle(0.0), st)
         ratio = (g.pulloff_force / T.graded_adhesion_force(E0=1.0, c0=1.0, k=k, radius=1.0, work=1.0)) / (
@@ -99,7 +99,7 @@ def test_calibrated_circle_follows_the_fitted_first_order_approach(k):
     k = -0.9.)"""
     r, u = calibration(k)
     for N in (40, 56):
-        st = bg.Settings(grid=cs.Grid(elements_per_radius=N))
+        st = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N))
         g, h = bg.solve(_circle(k), st), bg.solve(_circle(0.0), st)
         assert g.converged and h.converged
 
@@ -116,7 +116,7 @@ def test_calibration_refuses_outside_its_range():
     """The calibrated criterion covers the measured -0.95 <= k <= 0.95 and says so beyond;
     the sheet's constant stays available there, and a scene without adhesion never uses the
     criterion, so it is not refused."""
-    st = bg.Settings(grid=cs.Grid(elements_per_radius=8))
+    st = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=8))
     for k in (-0.96, 0.96):
         with pytest.raises(cs.SceneError, match=r"settings.graded_criterion.*-0.95 <= k <= 0.95") as e:
             bg.solve(_circle(k), st)

@@ -27,7 +27,7 @@ def circle_scene(radius=1.0, work=1.0, **kw):
 
 
 def run(scene, N, **kw):
-    return bg.solve(scene, bg.Settings(grid=cs.Grid(elements_per_radius=N), **kw))
+    return bg.solve(scene, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N), **kw))
 
 
 # -- the preconditioner's symbol ----------------------------------------------
@@ -78,7 +78,7 @@ def test_elongated_faces_get_a_positive_preconditioner_and_the_same_answer():
     """A 4:1 rectangle's padded window has negative modes; the lattice symbol has none, and
     preconditioning does not change the answer."""
     sc = dataclasses.replace(circle_scene(), indenter=cs.Indenter(cs.Rectangle(4.0, 1.0)))
-    prob = bg.solver.build_problem(sc, bg.Settings(grid=cs.Grid(elements_per_radius=12)))
+    prob = bg.solver.build_problem(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=12)))
     assert prob.op.symbol.min() < 0 < prob.inverse_symbol.min()
     a, b = run(sc, 12), run(sc, 12, preconditioner="none")
     assert a.pulloff_force == pytest.approx(b.pulloff_force, rel=1e-8)
@@ -195,7 +195,7 @@ def test_fixed_step_converges_to_event_driven():
     errs = []
     steps = [dK / 10, dK / 40, dK / 160]
     for h in steps:
-        fx = bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=16), driver="fixed_step", step=h))
+        fx = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=16), driver="fixed_step", step=h))
         gap = ev.pulloff_force - fx.pulloff_force
         assert -1e-9 * ev.pulloff_force <= gap <= K * h * (1 + 1e-9)  # the peak lags by at most one step
         errs.append(gap)
@@ -212,7 +212,7 @@ def test_square_stiffness_factor_approaches_1021():
     Ns = (16, 32, 64)
     beta = []
     for N in Ns:
-        r = bg.press(square_scene(), bg.Settings(grid=cs.Grid(elements_per_radius=N)))
+        r = bg.press(square_scene(), bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)))
         a_r = math.sqrt(cs.rasterise(cs.Square(2.0), math.sqrt(4 / math.pi) / N).area / math.pi)
         beta.append(r.stiffness / (2 * E_STAR * a_r))
     # Richardson for first-order convergence (the sheet: beta converges like 1/N)
@@ -313,7 +313,7 @@ def test_coarse_grid_and_memory_are_refused():
     with pytest.raises(cs.SceneError, match="too coarse"):
         run(circle_scene(), 1.5)
     with pytest.raises(cs.SceneError, match="max_memory_gb"):
-        bg.solve(circle_scene(), bg.Settings(grid=cs.Grid(elements_per_radius=64), max_memory_gb=0.001))
+        bg.solve(circle_scene(), bg.GriffithSettings(grid=cs.Grid(elements_per_radius=64), max_memory_gb=0.001))
 
 
 def test_snapshots_and_fields_only_when_asked():
@@ -337,7 +337,7 @@ def test_press_to_force_matches_hertz():
     a_hertz = math.sqrt(R * d_hertz)
     errs = []
     for N in (24, 48):
-        r = bg.press(sc, bg.Settings(grid=cs.Grid(elements_per_radius=N)))
+        r = bg.press(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)))
         h = 0.4 / N
         assert r.force == pytest.approx(F0, rel=1e-9)
         # the contact area is a staircase: within sqrt(2) P h of the Hertz disc
@@ -350,7 +350,7 @@ def test_press_to_force_matches_hertz():
 def test_unload_reload_reattaches_the_whole_face():
     # pull past the first detachments, push back to d > 0: every free face element's gap closes,
     # so the face is whole again and the final pull-off repeats the plain one
-    st = bg.Settings(grid=cs.Grid(elements_per_radius=16))
+    st = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=16))
     plain = run(square_scene(), 16)
     turn = 0.5 * (plain.pulloff_approach + plain.detachment_approach)
     sc = dataclasses.replace(square_scene(), loading=cs.Loading(turning_points=(turn, 0.2)))
@@ -414,10 +414,10 @@ def test_periodic_punch_array_matches_the_lattice_correction():
     sc = circle_scene()
     E = sc.material.effective_modulus
     N = 16
-    iso = bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=N)))
+    iso = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)))
     Ls, dK, dF = (4.0, 6.0, 8.0), [], []
     for L in Ls:
-        r = bg.solve(sc, bg.Settings(grid=cs.Grid(spacing=1.0 / N, periodic=True, period=L)))
+        r = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(spacing=1.0 / N, periodic=True, period=L)))
         assert r.converged and r.detached
         dK.append(abs(r.stiffness * (1 / iso.stiffness + M0 / (np.pi * E * L)) - 1))
         dF.append(abs(r.pulloff_force / iso.pulloff_force - 1))

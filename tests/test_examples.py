@@ -232,7 +232,7 @@ def test_fig13_15_physical_units_show_the_papers_features():
         assert (x1 - x0) * MM <= fx1 - fx0 + 8 * h, name              # the face fills the map: same unit
     # unit scaling: the SI solve equals the scaled solve times sqrt(E* w L^3), to solver tolerance
     L = 0.01
-    st = bg.Settings(grid=cs.Grid(elements_per_radius=12))
+    st = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=12))
     _, E_s, w_s = FACES["star"]
     si, sc = bg.solve(scene("star"), st), bg.solve(scaled("star", L), st)
     assert abs(si.pulloff_force / (sc.pulloff_force * math.sqrt(E_s * w_s * L**3)) - 1) < 1e-8

@@ -26,7 +26,7 @@ def test_fem_does_not_lock_as_nu_tends_to_half(nu):
 @pytest.mark.parametrize("k", [0.9, 0.95, -0.9, -0.95])
 def test_graded_bem_near_the_limits_is_finite_and_stiffness_holds(k):
     mat = cs.PowerLawGraded(1.0, 1.0, k)
-    st = bg.Settings(grid=cs.Grid(elements_per_radius=16))
+    st = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=16))
     r = bg.solve(circle(mat), st)   # inside the calibration, -0.95 <= k <= 0.95
     assert r.converged and np.all(np.isfinite(r.curve.force)) and r.pulloff_force > 0
     assert r.info["graded_criterion"] == "calibrated"
@@ -40,11 +40,11 @@ def test_graded_bem_near_the_limits_is_finite_and_stiffness_holds(k):
 
 def test_tiny_and_huge_work_of_adhesion_are_reported():
     E = cs.Homogeneous(0.75, 0.5)
-    tiny = bg.solve(circle(E, work=1e-12), bg.Settings(grid=cs.Grid(elements_per_radius=16)))
+    tiny = bg.solve(circle(E, work=1e-12), bg.GriffithSettings(grid=cs.Grid(elements_per_radius=16)))
     # F_A ~ sqrt(w): the same discretised factor as for w = 1
-    unit = bg.solve(circle(E, work=1.0), bg.Settings(grid=cs.Grid(elements_per_radius=16)))
+    unit = bg.solve(circle(E, work=1.0), bg.GriffithSettings(grid=cs.Grid(elements_per_radius=16)))
     assert tiny.detached and tiny.pulloff_force == pytest.approx(unit.pulloff_force * 1e-6, rel=1e-8)
-    huge = bg.solve(circle(E, work=1e6, loading=cs.Loading(pull_limit=-10.0)), bg.Settings(grid=cs.Grid(elements_per_radius=16)))
+    huge = bg.solve(circle(E, work=1e6, loading=cs.Loading(pull_limit=-10.0)), bg.GriffithSettings(grid=cs.Grid(elements_per_radius=16)))
     assert not huge.detached and huge.converged
     assert any("still attached" in m for m in huge.messages)
 
@@ -53,7 +53,7 @@ def test_tiny_and_huge_work_of_adhesion_are_reported():
 def test_elongated_faces_keep_their_shape(aspect):
     # the last stable state is the rectangle with rounded corners, not the incircle (Figs. 10-11)
     sc = cs.Scene(cs.Indenter(cs.Rectangle(float(aspect), 1.0)), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
-    r = bg.solve(sc, bg.Settings(grid=cs.Grid(spacing=1 / 8)))
+    r = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(spacing=1 / 8)))
     assert r.converged and r.detached
     inc = math.pi * 0.5**2
     assert r.last_stable.contact_area > 0.9 * aspect > 10 * inc
@@ -63,21 +63,21 @@ def test_one_element_features_and_coarse_faces():
     # a brush whose pillars span one to two elements still runs; a face below 4 cells is refused
     brush = cs.Brush(side=2.0, pillar_radius=0.06, pitch=0.3)
     sc = cs.Scene(cs.Indenter(brush), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
-    r = bg.solve(sc, bg.Settings(grid=cs.Grid(spacing=0.03)))
+    r = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(spacing=0.03)))
     assert r.converged and r.detached and np.all(np.isfinite(r.curve.force))
     with pytest.raises(cs.SceneError, match="too coarse"):
-        bg.solve(sc, bg.Settings(grid=cs.Grid(spacing=0.04)))
+        bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(spacing=0.04)))
 
 
 def test_memory_is_estimated_before_allocation():
     sc = circle(cs.Homogeneous(0.75, 0.5))
     with pytest.raises(cs.SceneError, match="needs about .* GB"):
-        bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=512), max_memory_gb=0.05))
+        bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=512), max_memory_gb=0.05))
 
 
 def test_identical_runs_are_bit_identical_and_units_scale_to_1e10():
     tri = cs.Scene(cs.Indenter(cs.Triangle.equilateral(1.0)), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
-    st = bg.Settings(grid=cs.Grid(elements_per_radius=16), rtol=1e-13)
+    st = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=16), rtol=1e-13)
     a, b = bg.solve(tri, st), bg.solve(tri, st)
     assert np.array_equal(a.curve.force, b.curve.force) and np.array_equal(a.curve.approach, b.curve.approach)
     L, E, w = 0.03, 6020.0, 0.062                     # the paper's triangle (Fig. 13), SI units
@@ -147,8 +147,8 @@ def test_float32_preconditioner_does_not_change_the_answer():
     """The Griffith solver's float32 path (its Fourier preconditioner runs single-precision
     FFTs) against plain float64 CG: the same result to the CG tolerance (rtol 1e-10)."""
     sc = circle(cs.Homogeneous(0.75, 0.5))
-    r32 = bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=16), preconditioner="fourier"))
-    r64 = bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=16), preconditioner="none"))
+    r32 = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=16), preconditioner="fourier"))
+    r64 = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=16), preconditioner="none"))
     assert r32.pulloff_force == pytest.approx(r64.pulloff_force, rel=1e-8)
     assert r32.pulloff_approach == pytest.approx(r64.pulloff_approach, rel=1e-8)
     assert r32.info["events"] == r64.info["events"]
@@ -163,7 +163,7 @@ def test_periodic_grid_is_refused_where_not_implemented():
     with pytest.raises(cs.SceneError, match="grid.periodic"):
         be.solve(cs.Scene(sc.indenter, sc.material, cs.Adhesion(1.0, 0.3)), be.EnergySettings(grid=grid))
     with pytest.raises(cs.SceneError, match="grid.periodic"):
-        bg.solve(circle(cs.PowerLawGraded(1.0, 1.0, 0.5)), bg.Settings(grid=grid))
+        bg.solve(circle(cs.PowerLawGraded(1.0, 1.0, 0.5)), bg.GriffithSettings(grid=grid))
     with pytest.raises(cs.SceneError, match="grid.period"):
         cs.Grid(elements_per_radius=8, periodic=True)
     with pytest.raises(cs.SceneError, match="grid.period"):
@@ -171,4 +171,4 @@ def test_periodic_grid_is_refused_where_not_implemented():
     with pytest.raises(cs.SceneError, match="grid.periodic"):
         cs.Grid(elements_per_radius=8, periodic="yes", period=4.0)
     with pytest.raises(cs.SceneError, match="does not fit"):
-        bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=8, periodic=True, period=2.0)))
+        bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=8, periodic=True, period=2.0)))

@@ -212,5 +212,5 @@ def test_on_loves_squares_both_bems_share_a_kernel_error(monkeypatch):
     sc = cs.Scene(cs.Indenter(cs.Square(2.0)), cs.Homogeneous(1.0, 0.0), cs.Adhesion(0.0, None, "exponential"))
     grid = cs.Grid(elements_per_radius=16)
     r_e = be.solve(sc, be.EnergySettings(grid=grid, kernel="love"))
-    r_g = bg.solve(sc, bg.Settings(grid=grid))
+    r_g = bg.solve(sc, bg.GriffithSettings(grid=grid))
     assert r_e.stiffness == pytest.approx(r_g.stiffness, rel=1e-6)

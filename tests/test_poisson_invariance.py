@@ -25,7 +25,7 @@ def _scenes(work, range_=None):
 
 
 def _griffith(sc):
-    return bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=8)))
+    return bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=8)))
 
 
 def _energy(sc):

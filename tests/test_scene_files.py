@@ -220,15 +220,15 @@ def test_resolution_limits_are_the_solvers_own():
 
     sc = cs.load_scene(SCENE_DIR / "square.toml")
     lo, hi = METHODS["bem_griffith"].resolution_range(sc)
-    bg.solver.build_problem(sc, bg.Settings(grid=cs.Grid(elements_per_radius=lo * 1.001)))
+    bg.solver.build_problem(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=lo * 1.001)))
     with pytest.raises(cs.SceneError, match="too coarse"):
-        bg.solver.build_problem(sc, bg.Settings(grid=cs.Grid(elements_per_radius=lo * 0.99)))
+        bg.solver.build_problem(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=lo * 0.99)))
     # the finest grid for a memory limit: 10 % inside it the solver sets up, 10 % beyond it refuses
     n_max = bg.solver.max_elements_per_radius(sc, max_memory_gb=0.05)
     small = dict(max_memory_gb=0.05)
-    bg.solver.build_problem(sc, bg.Settings(grid=cs.Grid(elements_per_radius=0.9 * n_max), **small))
+    bg.solver.build_problem(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=0.9 * n_max), **small))
     with pytest.raises(cs.SceneError, match="max_memory_gb"):
-        bg.solver.build_problem(sc, bg.Settings(grid=cs.Grid(elements_per_radius=1.1 * n_max), **small))
+        bg.solver.build_problem(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=1.1 * n_max), **small))
     assert hi == bg.solver.max_elements_per_radius(sc)          # the default limit's
     lo, hi = METHODS["fem_reference"].resolution_range(cs.load_scene(SCENE_DIR / "kendall_circle.toml"))
     fr.FemSettings(grading=1 / hi)

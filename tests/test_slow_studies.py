@@ -15,7 +15,7 @@ def test_kendall_envelope_up_to_128():
     sc = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
     FK = T.kendall_adhesion_force(E_star=1.0, radius=1.0, work=1.0)
     for N in (80, 96, 112, 128):
-        r = bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=N)))
+        r = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)))
         assert abs(r.pulloff_force / FK - 1) <= 0.5 / N
 
 
@@ -23,7 +23,7 @@ def test_jkr_first_order_at_finer_grids():
     sc = cs.load_scene(SCENE_DIR / "jkr_sphere.toml")
     FJ = T.jkr_pulloff_force(work=0.01, sphere_radius=1.0)
     for N in (40, 48):
-        err = bg.solve(sc, bg.Settings(grid=cs.Grid(elements_per_radius=N))).pulloff_force / FJ - 1
+        err = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N))).pulloff_force / FJ - 1
         assert 0 < err <= 2.5 / N      # first order from above, ~1.9/N in the sweep
 
 
@@ -40,7 +40,7 @@ def test_graded_calibration_reproduces(k):
 
     def scaled(kk, N):
         r = bg.solve(cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, kk), cs.Adhesion(1.0)),
-                     bg.Settings(grid=cs.Grid(elements_per_radius=N), graded_criterion="eq42"))
+                     bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N), graded_criterion="eq42"))
         area = r.info["face_elements"] * r.grid_spacing**2
         return T.force_at_nominal_area(r.pulloff_force, area=area, nominal_area=math.pi, k=kk) / T.graded_adhesion_force(
             E0=1.0, c0=1.0, k=kk, radius=1.0, work=1.0)
@@ -64,5 +64,5 @@ def test_graded_stiffness_at_k09_against_the_fem():
     f = fr.solve(sc, fr.FemSettings(grading=2.0))
     assert abs(f.stiffness / T.graded_stiffness(E0=1.0, c0=1.0, k=k, radius=1.0) - 1) <= f.accuracy_estimate < 1e-3
     for N in (16, 32):
-        K = bg.press(sc, bg.Settings(grid=cs.Grid(elements_per_radius=N))).stiffness
+        K = bg.press(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N))).stiffness
         assert abs(K / f.stiffness - 1) <= 0.15 / N + f.accuracy_estimate
