@@ -6,7 +6,7 @@ from .io import load_scene, scene_from_dict, shape_from_dict, summarise
 from .materials import Homogeneous, Material, PowerLawGraded
 from .profiles import Cone, Flat, Paraboloid, Profile, Sphere
 from .raster import Raster, rasterise, rasterise_periodic
-from .result import Curve, Result, Snapshot
+from .result import QUANTITIES, Curve, ErrorBar, Result, Snapshot, SolverStats
 from .scene import Adhesion, Indenter, Loading, Outputs, Scene
 from .shapes import (Brush, Circle, Difference, Ellipse, ImageMask, Incircle, Polygon, PowerLawStar,
                      Rectangle, RegularPolygon, Shape, Square, SquareWithFaults, Star, Transformed,
@@ -15,7 +15,7 @@ from .shapes import (Brush, Circle, Difference, Ellipse, ImageMask, Incircle, Po
 __all__ = [
     "theory", "Grid", "SceneError", "load_scene", "scene_from_dict", "shape_from_dict", "summarise",
     "Homogeneous", "Material", "PowerLawGraded", "Cone", "Flat", "Paraboloid", "Profile", "Sphere",
-    "Raster", "rasterise", "rasterise_periodic", "Curve", "Result", "Snapshot", "Adhesion", "Indenter", "Loading", "Outputs",
+    "Raster", "rasterise", "rasterise_periodic", "Curve", "Result", "Snapshot", "SolverStats", "ErrorBar", "QUANTITIES", "Adhesion", "Indenter", "Loading", "Outputs",
     "Scene", "Brush", "Circle", "Difference", "Ellipse", "ImageMask", "Incircle", "Polygon",
     "PowerLawStar", "Rectangle", "RegularPolygon", "Shape", "Square", "SquareWithFaults", "Star",
     "Transformed", "Triangle", "TwoCircles", "Union",

@@ -1,12 +1,16 @@
 """The result type shared by every method."""
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["Curve", "Snapshot", "Result", "JSON_KEYS"]
+__all__ = ["Curve", "Snapshot", "Result", "SolverStats", "ErrorBar", "QUANTITIES", "JSON_KEYS"]
+
+#: the scalar outputs every method computes, and that error bars and checks refer to
+QUANTITIES = ("pulloff_force", "pulloff_approach", "stiffness")
 
 #: the keys every method fills in ``crossval solve --json``
 JSON_KEYS = ("method", "pulloff_force", "pulloff_approach", "stiffness", "converged",
@@ -58,8 +62,77 @@ class Snapshot:
                            self.origin[1] + self.spacing * np.arange(ny), indexing="ij")
 
 
+@dataclass(frozen=True)
+class SolverStats:
+    """The work a solve did, in counters every method fills (0 where one does not apply).
+
+    linear_solves
+        Linear systems solved: contact-set solves (Griffith BEM), minimisations (energy BEM),
+        factorisations (FEM).
+    linear_iterations
+        Their iterations: preconditioned CG steps, minimiser iterations.
+    operator_applications
+        Applications of the elastic operator: FFT convolutions, energy-and-gradient evaluations.
+    events
+        Steps of the loading path: detachment events (Griffith), continuation steps (energy).
+    unconverged
+        Sub-solves that stopped before their tolerance (each also says so in ``messages``).
+    unknowns
+        Size of the discrete problem: face elements (BEM) or degrees of freedom (FEM).
+    """
+
+    linear_solves: int = 0
+    linear_iterations: int = 0
+    operator_applications: int = 0
+    events: int = 0
+    unconverged: int = 0
+    unknowns: int = 0
+
+    def __post_init__(self):
+        for f in dataclasses.fields(self):
+            v = getattr(self, f.name)
+            if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 0:
+                raise ValueError(f"SolverStats.{f.name} must be an integer >= 0 (got {v!r})")
+            object.__setattr__(self, f.name, int(v))
+
+
+@dataclass(frozen=True)
+class ErrorBar:
+    """A bound on a result's relative error, ``|value / exact - 1| <= relative``, from an error
+    model that a convergence study showed to cover the method's error.
+
+    source
+        The study and the number the bar comes from (a reader can re-run it).
+    role
+        ``"validation"``: the quantity is an independent prediction; ``"calibration"``: the
+        method was fitted to this quantity on this very scene, so matching it validates nothing.
+    """
+
+    relative: float
+    source: str
+    role: str = "validation"
+
+    def __post_init__(self):
+        if not (isinstance(self.relative, (int, float)) and math.isfinite(self.relative) and self.relative >= 0):
+            raise ValueError(f"ErrorBar.relative must be a finite number >= 0 (got {self.relative!r})")
+        if self.role not in ("validation", "calibration"):
+            raise ValueError(f"ErrorBar.role must be 'validation' or 'calibration' (got {self.role!r})")
+        object.__setattr__(self, "relative", float(self.relative))
+
+
 @dataclass(frozen=True, eq=False)
 class Result:
+    """What every method returns.
+
+    Besides the curve and the pull-off point: ``stats`` (typed work counters), ``error_bars``
+    (per quantity of :data:`QUANTITIES`, the method's bounded relative error on this scene; a
+    quantity without a bar is not claimed to any accuracy), ``face_area`` (the area of the face as
+    discretised, e.g. a BEM grid's staircase; None when the face is exact), ``discretisation``
+    (``"grid"``: one square-element grid; ``"mesh"``: a finite-element mesh; ``"extrapolated"``:
+    a limit over several discretisations) and ``info`` (method-specific diagnostics, typed per
+    method, for people and JSON; the harness does not read it).
+    """
+
     method: str
     pulloff_force: float                 # magnitude of the largest tensile force
     pulloff_approach: float              # approach at that force
@@ -77,8 +150,19 @@ class Result:
     accuracy_estimate: float | None = None
     messages: tuple[str, ...] = ()
     info: dict = field(default_factory=dict)
+    stats: SolverStats = field(default_factory=SolverStats)
+    error_bars: dict = field(default_factory=dict)       # quantity -> ErrorBar
+    face_area: float | None = None
+    discretisation: str = "grid"
 
     def __post_init__(self):
+        if self.discretisation not in ("grid", "mesh", "extrapolated"):
+            raise ValueError(f"Result.discretisation must be 'grid', 'mesh' or 'extrapolated' (got {self.discretisation!r})")
+        for q, bar in self.error_bars.items():
+            if q not in QUANTITIES or not isinstance(bar, ErrorBar):
+                raise ValueError(f"Result.error_bars maps {', '.join(QUANTITIES)} to ErrorBar (got {q!r}: {bar!r})")
+        if self.face_area is not None and not (math.isfinite(self.face_area) and self.face_area > 0):
+            raise FloatingPointError(f"{self.method}: face_area is not a positive number ({self.face_area}); this is a solver bug")
         for name in ("pulloff_force", "pulloff_approach", "stiffness", "grid_spacing", "residual"):
             v = getattr(self, name)
             if not math.isfinite(v):
@@ -115,5 +199,9 @@ class Result:
             "accuracy_estimate": self.accuracy_estimate,
             "messages": list(self.messages),
             "info": dict(self.info),
+            "stats": dataclasses.asdict(self.stats),
+            "error_bars": {q: dataclasses.asdict(b) for q, b in self.error_bars.items()},
+            "face_area": self.face_area,
+            "discretisation": self.discretisation,
         }
         return out

@@ -24,7 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
-from contact_scene import Curve, Result, Snapshot
+from contact_scene import Curve, ErrorBar, Result, Snapshot, SolverStats
 
 __all__ = ["ResultCache", "package_version", "encode_result", "decode_result", "FORMAT"]
 
@@ -33,7 +33,7 @@ log = logging.getLogger("crossval")
 #: bumped whenever the entry layout changes: older entries are then misses, not errors
 FORMAT = 1
 
-_TYPES = {cls.__name__: cls for cls in (Result, Curve, Snapshot)}
+_TYPES = {cls.__name__: cls for cls in (Result, Curve, Snapshot, SolverStats, ErrorBar)}
 
 
 def package_version() -> str:
