@@ -4,22 +4,45 @@ their lengths in the unit the neighbouring curves use.
 ``crossval.plotting.plot_contact`` draws in the scene's own length unit and titles a panel with
 the bare approach; a picture that plots its curves in mm, or in face radii, needs its contact
 maps in the same unit and a title saying which state is shown.
+
+How a script runs when executed, by ``python examples/<name>.py`` or by the documentation
+build (``docs/conf.py``), is set by the environment variable ``ADHESIVE_PUNCH_EXAMPLES``:
+``full`` (the default for a script: the resolutions of the published pictures, minutes to
+tens of minutes) or ``short`` (the versions the tests run, seconds: the documentation build's
+default).  A full run writes its picture to ``ADHESIVE_PUNCH_PICTURES`` (default: the current
+directory).
 """
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import numpy as np
 
-GALLERY = Path(__file__).resolve().parents[1] / "docs" / "gallery"
-
 #: grey levels of the paper's contact pictures: the initial face grey, the remaining contact black
 FACE_GREY, CONTACT_BLACK = 0.35, 1.0
 
+#: the ways a script can run (ADHESIVE_PUNCH_EXAMPLES)
+RUNS = ("full", "short")
+
+
+def run_mode() -> str:
+    """``full`` or ``short``, from ``ADHESIVE_PUNCH_EXAMPLES`` (default ``full``)."""
+    mode = os.environ.get("ADHESIVE_PUNCH_EXAMPLES", "full").strip().lower() or "full"
+    if mode not in RUNS:
+        raise ValueError(f"ADHESIVE_PUNCH_EXAMPLES must be one of {', '.join(RUNS)} (got {mode!r})")
+    return mode
+
+
+def short_run() -> bool:
+    """Whether a script run should be the short version (the tests' resolutions)."""
+    return run_mode() == "short"
+
 
 def picture_path(name: str) -> Path:
-    """docs/gallery/<name>.png, the picture docs/gallery.md shows."""
-    return GALLERY / f"{name}.png"
+    """<name>.png in ``ADHESIVE_PUNCH_PICTURES`` (default: the current directory), where a
+    full run writes its picture."""
+    return Path(os.environ.get("ADHESIVE_PUNCH_PICTURES", ".")) / f"{name}.png"
 
 
 def contact_map(ax, snapshot, face=None, *, scale: float = 1.0, unit: str = "", title: str | None = None):

@@ -1,6 +1,16 @@
-"""Kendall's flat circular punch, three ways: closed form, Griffith BEM and FEM reference.
+"""
+Kendall's flat punch, three ways
+================================
 
-    python examples/kendall_circle.py            # full version, writes docs/gallery/kendall_circle.png
+Kendall's flat circular punch (radius 1, E* = w = 1) by the closed form (Eqs. 1-6), the
+Griffith BEM and the FEM reference.  Both computed curves lie on Kendall's in units of his
+pull-off force and approach; the BEM's pull-off force zig-zags with the staircase of the
+rasterised circle inside its envelope 0.5 Delta/a, the FEM's error is below 1e-4.
+
+The BEM runs at 64 elements per radius; the full version refines the FEM's mesh (grading 1
+instead of 2), the tests run the BEM at 16 per radius::
+
+    python examples/kendall_circle.py            # full version, writes kendall_circle.png
     from examples.kendall_circle import run      # short version (used by the tests)
 """
 from __future__ import annotations
@@ -79,4 +89,9 @@ def main(path=None) -> None:
 
 
 if __name__ == "__main__":
-    main()
+    if _gallery.short_run():
+        out = run(resolution=64, fem_grading=2.0)
+        plot(out)
+        report(out)
+    else:
+        main()
