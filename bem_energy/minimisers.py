@@ -128,61 +128,61 @@ def _projected_cg(prob, U0, d, adhesive, gtol, max_iterations) -> Minimum:
     energy decreasing on the concave adhesive part."""
     L = _length_scale(prob, d, adhesive)
     face = prob.face
-    lb = _lower_bound(prob, d)
+    wall = _lower_bound(prob, d)
     U = U0.copy()
-    U[face] = np.maximum(U[face], lb)
+    U[face] = np.maximum(U[face], wall)
     E, G, P = prob.energy(U, d, adhesive)
-    S = None
-    Gf_old = None
-    zg_old = None
-    wall_old = None
+    direction = None
+    Gf_previous = None
+    zg_previous = None
+    fixed_previous = None
     evals = 1
-    pot = prob.potential if adhesive else None
+    potential = prob.potential if adhesive else None
     for it in range(1, max_iterations + 1):
         at_wall = np.zeros(prob.padded, bool)
-        at_wall[face] = U[face] <= lb + 1e-13 * L
+        at_wall[face] = U[face] <= wall + 1e-13 * L
         fixed = at_wall & (G > 0)
         Gf = np.where(fixed, 0.0, G)
         pg = float(np.max(np.abs(Gf))) * prob.self_compliance / (prob.cell * L)
         if pg <= gtol:
             return Minimum(U, P, E, it - 1, evals, True, pg)
-        Z = prob.displacement(Gf)
-        Z[fixed] = 0.0
-        zg = float(np.vdot(Z, Gf))
-        if S is not None and np.array_equal(fixed, wall_old) and zg_old > 0:
-            beta = max(0.0, float(np.vdot(Z, Gf - Gf_old)) / zg_old)
-            S = -Z + beta * S
-            S[fixed] = 0.0
-            if float(np.vdot(S, Gf)) >= 0:
-                S = -Z
+        preconditioned = prob.displacement(Gf)
+        preconditioned[fixed] = 0.0
+        zg = float(np.vdot(preconditioned, Gf))
+        if direction is not None and np.array_equal(fixed, fixed_previous) and zg_previous > 0:
+            beta = max(0.0, float(np.vdot(preconditioned, Gf - Gf_previous)) / zg_previous)
+            direction = -preconditioned + beta * direction
+            direction[fixed] = 0.0
+            if float(np.vdot(direction, Gf)) >= 0:
+                direction = -preconditioned
         else:
-            S = -Z
-        wall_old, zg_old, Gf_old = fixed, zg, Gf
-        KS = prob.pressure(S)
-        sKs = float(np.vdot(S, KS))
-        sHs = sKs
-        if pot is not None:
-            Sf = S[face]
-            sHs += float(np.dot(pot.curvature(prob.gap(U, d)) * Sf, Sf))
-        gs = float(np.vdot(Gf, S))
-        # Newton step on the local quadratic model; where the adhesion makes the model concave
-        # along S, the elastic curvature alone sets a first trial (backtracking follows)
-        alpha = -gs / (prob.cell * (sHs if sHs > 0 else sKs))
+            direction = -preconditioned
+        fixed_previous, zg_previous, Gf_previous = fixed, zg, Gf
+        direction_pressure = prob.pressure(direction)
+        elastic_curvature = float(np.vdot(direction, direction_pressure))
+        curvature = elastic_curvature
+        if potential is not None:
+            direction_face = direction[face]
+            curvature += float(np.dot(potential.curvature(prob.gap(U, d)) * direction_face, direction_face))
+        gs = float(np.vdot(Gf, direction))
+        # Newton step on the local quadratic model; where the adhesion makes the model concave along
+        # the direction, the elastic curvature alone sets a first trial (backtracking follows)
+        alpha = -gs / (prob.cell * (curvature if curvature > 0 else elastic_curvature))
         for halvings in range(60):
-            Un = U + alpha * S
-            clipped = Un[face] < lb
+            Un = U + alpha * direction
+            clipped = Un[face] < wall
             if clipped.any():
-                Un[face] = np.maximum(Un[face], lb)
+                Un[face] = np.maximum(Un[face], wall)
                 Pn = None
             else:
-                Pn = P + alpha * KS
+                Pn = P + alpha * direction_pressure
             En, Gn, Pn = prob.energy(Un, d, adhesive, Pn)
             evals += 1
             if En <= E + 1e-4 * alpha * gs:
                 break
-            if abs(En - E) <= 1e-12 * abs(E) and abs(float(np.vdot(Gn, S))) <= 0.9 * abs(gs):
+            if abs(En - E) <= 1e-12 * abs(E) and abs(float(np.vdot(Gn, direction))) <= 0.9 * abs(gs):
                 # the energy change is at round-off, where Armijo cannot decide; the slope
-                # along S still can: accept a step that flattens it (a Wolfe-type condition)
+                # along the direction still can: accept a step that flattens it (a Wolfe-type condition)
                 break
             alpha *= 0.5
         else:
@@ -215,7 +215,7 @@ def face_matrix(prob: EnergyProblem) -> np.ndarray:
 
 class _FaceQP:
     """The face's dense matrices and the compiled contact QP of one problem:
-    min 1/2 s.K s + g.s subject to s >= lo, with g and lo cvxpy parameters, so that the
+    min 1/2 s.K s + g.s subject to s >= lower, with g and lower cvxpy parameters, so that the
     canonicalisation (most of a fresh 112-variable solve) is done once per problem."""
 
     def __init__(self, prob: EnergyProblem):
@@ -228,11 +228,11 @@ class _FaceQP:
         self.K = 0.5 * (K + K.T)
         n = self.K.shape[0]
         self.s = cp.Variable(n)
-        self.g, self.lo = cp.Parameter(n), cp.Parameter(n)
+        self.g, self.lower = cp.Parameter(n), cp.Parameter(n)
         self.qp = cp.Problem(cp.Minimize(0.5 * cp.quad_form(self.s, cp.psd_wrap(self.K)) + self.g @ self.s),
-                             [self.s >= self.lo])
+                             [self.s >= self.lower])
 
-    def step(self, g: np.ndarray, lo: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    def step(self, g: np.ndarray, lower: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
         """The QP's solution and its set of cells at the bound (None if the solver fails).  Clarabel finds the solution
         to its tolerance and, above all, which cells stay at the wall; that set is then
         solved exactly.  An interior point stops short of the bound by its tolerance and, at
@@ -242,7 +242,7 @@ class _FaceQP:
         import cvxpy as cp
 
         K = self.K
-        self.g.value, self.lo.value = g, lo
+        self.g.value, self.lower.value = g, lower
         with warnings.catch_warnings():
             # "solution may be inaccurate" at a degenerate minimum: the active-set solve below
             # and the projected gradient of the iteration judge the step
@@ -253,28 +253,28 @@ class _FaceQP:
                 return None
         if self.s.value is None:
             return None
-        s0 = np.maximum(np.asarray(self.s.value, float), lo)
-        active = K @ s0 + g > s0 - lo                # multiplier larger than the slack
-        s1 = _on_active_set(K, g, lo, active)
-        if _solves_qp(K, g, lo, s1, active):
-            return np.maximum(s1, lo), active
-        return s0, s0 <= lo
+        s0 = np.maximum(np.asarray(self.s.value, float), lower)
+        active = K @ s0 + g > s0 - lower                # multiplier larger than the slack
+        s1 = _on_active_set(K, g, lower, active)
+        if _solves_qp(K, g, lower, s1, active):
+            return np.maximum(s1, lower), active
+        return s0, s0 <= lower
 
 
-def _on_active_set(H, g, lo, active):
-    """Minimiser of 1/2 s.H s + g.s with s = lo on ``active`` and free elsewhere."""
-    s = lo.copy()
+def _on_active_set(H, g, lower, active):
+    """Minimiser of 1/2 s.H s + g.s with s = lower on ``active`` and free elsewhere."""
+    s = lower.copy()
     free = ~active
     if free.any():
-        s[free] = np.linalg.solve(H[np.ix_(free, free)], -g[free] - H[np.ix_(free, active)] @ lo[active])
+        s[free] = np.linalg.solve(H[np.ix_(free, free)], -g[free] - H[np.ix_(free, active)] @ lower[active])
     return s
 
 
-def _solves_qp(H, g, lo, s, active) -> bool:
-    """KKT of min 1/2 s.H s + g.s, s >= lo for s from :func:`_on_active_set`: the free cells
+def _solves_qp(H, g, lower, s, active) -> bool:
+    """KKT of min 1/2 s.H s + g.s, s >= lower for s from :func:`_on_active_set`: the free cells
     feasible, the held ones pressed (non-negative multipliers), to round-off."""
     tol = 1e-9 * max(1.0, float(np.max(np.abs(g), initial=0.0)))
-    return bool(np.all(s[~active] >= lo[~active] - tol) and np.all((H @ s + g)[active] >= -tol))
+    return bool(np.all(s[~active] >= lower[~active] - tol) and np.all((H @ s + g)[active] >= -tol))
 
 
 _FACE_QPS: "weakref.WeakKeyDictionary[EnergyProblem, _FaceQP]" = weakref.WeakKeyDictionary()
@@ -301,25 +301,25 @@ def _cvxpy(prob, U0, d, adhesive, gtol, max_iterations) -> Minimum:
     L = _length_scale(prob, d, adhesive)
     pot = prob.potential if adhesive else None
     a = prob.self_compliance / L**2               # one cell's adhesive energy in the energy unit
-    lb = _lower_bound(prob, d) / L
-    x = np.maximum(U0[prob.face] / L, lb)
+    wall = _lower_bound(prob, d) / L
+    x = np.maximum(U0[prob.face] / L, wall)
     elastic = float(np.dot(x, K @ x))
 
     def gradient(x):
         gx = K @ x
         if pot is not None:
-            gx = gx + pot.stress((x - lb) * L) * (a * L)
+            gx = gx + pot.stress((x - wall) * L) * (a * L)
         return gx
 
     def projected(x, gx):
-        return float(np.max(np.abs(np.where(x <= lb, np.minimum(gx, 0.0), gx)), initial=0.0))
+        return float(np.max(np.abs(np.where(x <= wall, np.minimum(gx, 0.0), gx)), initial=0.0))
 
     def change(x, xn):
         """E(xn) - E(x) without the cancellation of two large energies."""
         s = xn - x
         dE = float(np.dot(K @ x, s) + 0.5 * np.dot(s, K @ s))
         if pot is not None:
-            dE += a * float(np.sum(pot.energy((xn - lb) * L) - pot.energy((x - lb) * L)))
+            dE += a * float(np.sum(pot.energy((xn - wall) * L) - pot.energy((x - wall) * L)))
         return dE
 
     def search(x, gx, pg, s, halvings):
@@ -328,8 +328,8 @@ def _cvxpy(prob, U0, d, adhesive, gtol, max_iterations) -> Minimum:
         slope = float(np.dot(gx, s))
         for _ in range(halvings):
             xn = x + t * s
-            # x + (lb - x) misses lb by round-off: cells the step puts at the wall go exactly there
-            xn = np.where(xn <= lb + 1e-12 * (1.0 + np.abs(lb)), lb, xn)
+            # x + (wall - x) misses wall by round-off: cells the step puts at the wall go exactly there
+            xn = np.where(xn <= wall + 1e-12 * (1.0 + np.abs(wall)), wall, xn)
             dE = change(x, xn)
             gn = gradient(xn)
             if dE <= 1e-4 * min(float(np.dot(gx, xn - x)), t * slope, 0.0) and dE < 0:
@@ -340,7 +340,7 @@ def _cvxpy(prob, U0, d, adhesive, gtol, max_iterations) -> Minimum:
             t *= 0.5
         return None
 
-    def newton(H, gx, lo, active):
+    def newton(H, gx, lower, active):
         """Newton's step with the cells of ``active`` held at the wall, or None where the
         Hessian on the free cells is not positive definite (past a fold)."""
         free = ~active
@@ -348,7 +348,7 @@ def _cvxpy(prob, U0, d, adhesive, gtol, max_iterations) -> Minimum:
             np.linalg.cholesky(H[np.ix_(free, free)])
         except np.linalg.LinAlgError:
             return None
-        return _on_active_set(H, gx, lo, active)
+        return _on_active_set(H, gx, lower, active)
 
     gx = gradient(x)
     pg = projected(x, gx)
@@ -358,25 +358,25 @@ def _cvxpy(prob, U0, d, adhesive, gtol, max_iterations) -> Minimum:
             message = "iteration limit"
             break
         it += 1
-        lo = lb - x
-        H = K if pot is None else K + np.diag(pot.curvature((x - lb) * L) * (a * L**2))
+        lower = wall - x
+        H = K if pot is None else K + np.diag(pot.curvature((x - wall) * L) * (a * L**2))
         # the cells pressed onto the wall now usually stay there: when Newton's step with
         # them held satisfies the model's optimality conditions, it is that model's solution
         # and the QP is not needed
-        held = (x <= lb) & (gx > 0)
-        s = newton(H, gx, lo, held)
+        held = (x <= wall) & (gx > 0)
+        s = newton(H, gx, lower, held)
         nxt = None
-        if s is not None and _solves_qp(H, gx, lo, s, held):
+        if s is not None and _solves_qp(H, gx, lower, s, held):
             nxt = search(x, gx, pg, s, 8)
             evals += 1
         if nxt is None:
-            qp = face_qp.step(gx, lo)
+            qp = face_qp.step(gx, lower)
             if qp is None:
                 message = "the cvxpy contact QP failed"
                 break
             s_cc, active = qp
             if pot is not None:
-                s = newton(H, gx, lo, active)
+                s = newton(H, gx, lower, active)
                 if s is not None:
                     nxt = search(x, gx, pg, s, 8)
                     evals += 1

@@ -12,23 +12,55 @@ from __future__ import annotations
 import logging
 import math
 import time
-from dataclasses import replace
+from dataclasses import fields, replace
+from typing import TypedDict
 
 import numpy as np
 
-from contact_scene import Circle, Grid, Result, Scene, rasterise, theory
+from contact_scene import Circle, Grid, Result, Scene, SolverStats, rasterise, theory
 
 from .potentials import Potential, process_zone_exponent, process_zone_modulus, range_for_process_zone
 from .settings import ZeroRangeSettings
-from .solver import pull_off
+from .solver import EnergyInfo, pull_off
 
-__all__ = ["zero_range", "richardson", "tail_bracket", "COARSE_LIMIT", "RATE_BRACKET"]
+__all__ = ["zero_range", "richardson", "tail_bracket", "ZeroRangeInfo", "SequenceInfo", "COARSE_LIMIT",
+           "RATE_BRACKET"]
 
 #: a sequence whose finest process zone is above this (in units of a) cannot see the cornered
 #: faces' late convergence (their local rate passes 0.8 only below 0.04 a)
 COARSE_LIMIT = 0.02
 
 log = logging.getLogger("bem_energy")
+
+
+class SequenceInfo(TypedDict):
+    """The finite ranges behind a zero-range limit, coarsest first: their process zones l_c / a,
+    ranges, grid spacings and pull-off forces (scaled to the nominal face area when the
+    settings ask for it, and raw) and approaches; the extrapolation's rate (given, or fitted:
+    None when no single rate fitted) and whether the sequence stops above :data:`COARSE_LIMIT`."""
+
+    process_zone_ratios: list[float]
+    ranges: list[float]
+    spacings: list[float]
+    pulloff_forces: list[float]
+    raw_pulloff_forces: list[float]
+    pulloff_approaches: list[float]
+    rate: float | None
+    fitted_rate: float | None
+    coarse: bool
+
+
+class ZeroRangeInfo(EnergyInfo):
+    """``Result.info`` of a zero-range limit: the finest range's :class:`EnergyInfo` and the
+    sequence under ``"zero_range"``."""
+
+    zero_range: SequenceInfo
+
+
+def _sum_stats(results) -> SolverStats:
+    """The work of a sequence of solves: every counter summed over it (the unknowns too: the
+    problem sizes of all the ranges solved)."""
+    return SolverStats(**{f.name: sum(getattr(r.stats, f.name) for r in results) for f in fields(SolverStats)})
 
 
 def _lsq_fit(h, F, powers) -> tuple[float, float]:
@@ -50,12 +82,12 @@ def _fit_free(h, F) -> tuple[float, float] | None:
     def misfit(p):
         return _lsq_fit(h, F, [p])[1]
 
-    lo, hi = 0.2, 2.0
-    ps = np.linspace(lo, hi, 37)
+    p_min, p_max = 0.2, 2.0
+    ps = np.linspace(p_min, p_max, 37)
     j = int(np.argmin([misfit(p) for p in ps]))
     a, b = ps[max(j - 1, 0)], ps[min(j + 1, len(ps) - 1)]
     p = float(minimize_scalar(misfit, bounds=(a, b), method="bounded", options={"xatol": 1e-10}).x)
-    if p < lo + 1e-3 or p > hi - 1e-3:
+    if p < p_min + 1e-3 or p > p_max - 1e-3:
         return None
     return _lsq(h, F, [p]), p
 
@@ -206,11 +238,15 @@ def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callb
         iterations=sum(x[2].iterations for x in runs),
         timings=timings,
         messages=tuple(msgs),
-        info={**finest.info, "zero_range": {
-            "process_zone_ratios": [float(r) for r in settings.ratios],
-            "ranges": [float(x[1]) for x in runs],
-            "spacings": [float(x[2].grid_spacing) for x in runs],
-            "pulloff_forces": Fs.tolist(), "raw_pulloff_forces": raw.tolist(), "pulloff_approaches": ds.tolist(),
-            "rate": settings.rate, "fitted_rate": used_rate if settings.rate is None else None,
-            "coarse": min(settings.ratios) > COARSE_LIMIT}},
+        info=ZeroRangeInfo(**finest.info, zero_range=SequenceInfo(
+            process_zone_ratios=[float(r) for r in settings.ratios],
+            ranges=[float(x[1]) for x in runs],
+            spacings=[float(x[2].grid_spacing) for x in runs],
+            pulloff_forces=Fs.tolist(), raw_pulloff_forces=raw.tolist(), pulloff_approaches=ds.tolist(),
+            rate=settings.rate, fitted_rate=used_rate if settings.rate is None else None,
+            coarse=min(settings.ratios) > COARSE_LIMIT)),
+        stats=_sum_stats([x[2] for x in runs]),
+        # forces scaled to the nominal area refer to the exact face; raw ones to the finest grid's
+        face_area=None if settings.normalise_area else finest.face_area,
+        discretisation="extrapolated",
     )

@@ -83,6 +83,30 @@ def test_pulloff_from_attached_branch_snaps_and_reports_process_zone():
     assert r2.pulloff_approach == pytest.approx(r.pulloff_approach, abs=1e-3 * abs(r.pulloff_approach))
 
 
+def test_typed_stats_count_the_work_and_the_face():
+    """The typed contract the harness reads: the work counters of every minimisation, the face
+    as rasterised (counted independently by contact_scene.rasterise) and the kind of
+    discretisation; a zero-range limit sums its sequence."""
+    sc = circle(range_=rho_for(0.16))
+    r = be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=16)))
+    st = r.stats
+    raster = cs.rasterise(sc.indenter.shape, r.grid_spacing)
+    assert r.discretisation == "grid"
+    assert st.unknowns == r.info["face_elements"] == int(raster.mask.sum())
+    assert r.face_area == pytest.approx(raster.area, rel=1e-12)
+    assert (st.linear_solves, st.operator_applications) == (r.info["minimisations"], r.info["evaluations"])
+    assert st.linear_iterations == r.iterations > st.linear_solves and st.unconverged == 0
+    # continuation steps: at least half the default pull (the snap comes after the peak at about
+    # a third of the span), at most one per recorded point after the press
+    assert 40 // 3 <= st.events <= len(r.curve) - 1
+    sq = cs.Scene(cs.Indenter(cs.Square(2.0)), cs.Homogeneous(1.0, 0.0), cs.Adhesion(W))
+    z = be.solve(sq, be.ZeroRangeSettings(ratios=(0.32, 0.16, 0.08), rate=0.5, minimum_elements_per_radius=16))
+    assert z.discretisation == "extrapolated" and z.face_area is None     # forces scaled to the nominal face
+    cells = [int(cs.rasterise(sq.indenter.shape, h).mask.sum()) for h in z.info["zero_range"]["spacings"]]
+    assert z.stats.unknowns == sum(cells)
+    assert z.stats.linear_solves > z.info["minimisations"] > 0        # the sequence's, not the finest range's
+
+
 def test_unresolved_process_zone_is_reported():
     sc = circle(range_=rho_for(0.02))
     r = be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=16), minimiser="pk"))
