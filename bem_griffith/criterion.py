@@ -80,35 +80,37 @@ CIRCLE_FIRST_ORDER: dict[float, float] = {
 }
 
 
-def _table():
-    ks = np.array(sorted(CIRCLE_RATIO))
-    r = np.array([CIRCLE_RATIO[x][0] for x in ks])
-    u = np.array([CIRCLE_RATIO[x][1] for x in ks])
-    return ks, r, u
+def _table() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The stored exponents k, ratios r and uncertainties u, in increasing k."""
+    exponents = np.array(sorted(CIRCLE_RATIO))
+    ratios = np.array([CIRCLE_RATIO[x][0] for x in exponents])
+    uncertainties = np.array([CIRCLE_RATIO[x][1] for x in exponents])
+    return exponents, ratios, uncertainties
 
 
-def interpolate(ks, r, u, k: float) -> tuple[float, float]:
-    """(r, u) at k from measured (ks, r, u): s = r / sqrt(1 + k) and u / r are interpolated
-    (monotone cubic), since r has a square-root end at k = -1 (module doc)."""
+def interpolate(exponents, ratios, uncertainties, k: float) -> tuple[float, float]:
+    """(r, u) at k from measured r(k) and u(k): s = r / sqrt(1 + k) and the relative
+    uncertainty u / r are interpolated (monotone cubic), since r has a square-root end at
+    k = -1 (module doc)."""
     from scipy.interpolate import PchipInterpolator
 
-    ks, r, u = (np.asarray(a, float) for a in (ks, r, u))
-    w = np.sqrt(1.0 + ks)
-    s = float(PchipInterpolator(ks, r / w)(k))
-    rel = float(PchipInterpolator(ks, u / r)(k))
-    rk = s * math.sqrt(1.0 + k)
-    return rk, rel * rk
+    exponents, ratios, uncertainties = (np.asarray(a, float) for a in (exponents, ratios, uncertainties))
+    square_root_end = np.sqrt(1.0 + exponents)
+    smooth_ratio = float(PchipInterpolator(exponents, ratios / square_root_end)(k))
+    relative_uncertainty = float(PchipInterpolator(exponents, uncertainties / ratios)(k))
+    ratio = smooth_ratio * math.sqrt(1.0 + k)
+    return ratio, relative_uncertainty * ratio
 
 
 def calibration(k: float) -> tuple[float, float]:
     """(r, u) at exponent k, interpolated between the measured exponents; outside them a
     SceneError naming the setting and the covered range."""
-    ks, r, u = _table()
-    if not ks[0] <= k <= ks[-1]:
+    exponents, ratios, uncertainties = _table()
+    if not exponents[0] <= k <= exponents[-1]:
         raise SceneError("settings.graded_criterion",
-                         f"the calibrated criterion covers {ks[0]:g} <= k <= {ks[-1]:g} (got material.exponent "
+                         f"the calibrated criterion covers {exponents[0]:g} <= k <= {exponents[-1]:g} (got material.exponent "
                          f"k = {k:g}); use graded_criterion = 'eq42' (uncalibrated, any -1 < k < 1) there")
-    return interpolate(ks, r, u, k)
+    return interpolate(exponents, ratios, uncertainties, k)
 
 
 def stress_factor(k: float, criterion: str) -> float:

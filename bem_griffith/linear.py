@@ -18,61 +18,64 @@ def _dot(a: np.ndarray, b: np.ndarray) -> float:
 
 @dataclass(frozen=True, eq=False)
 class CGResult:
+    """The solution x, the iterations taken, the relative residual ||b - A x|| / ||b||
+    reached, whether it is within the tolerance, and (with ``restrict``) the full-grid C x."""
+
     x: np.ndarray
     iterations: int
-    residual: float          # ||b - A x|| / ||b||
+    residual: float
     converged: bool
-    image: np.ndarray | None = None   # the full-grid C x, when the matvec provides it
+    image: np.ndarray | None = None
 
 
 def conjugate_gradient(matvec: Callable, b: np.ndarray, x0: np.ndarray | None = None,
                        *, rtol: float = 1e-10, maxiter: int = 1000,
                        precondition: Callable[[np.ndarray], np.ndarray] | None = None,
                        restrict: np.ndarray | None = None) -> CGResult:
-    """(Preconditioned) CG, warm-started from ``x0``.
+    """(Preconditioned) CG for A x = b, warm-started from ``x0``.
 
     With ``restrict`` (a boolean mask), ``matvec`` returns the operator's image on the whole
     grid, the system is its restriction to the mask, and the full-grid image C x of the
     solution is accumulated alongside at no extra operator cost.  Never raises on
     non-convergence: the result says so, with the relative residual reached."""
-    def A(v):
+    def apply(v):
         full = matvec(v)
         return (full[restrict], full) if restrict is not None else (full, None)
 
-    bnorm = math.sqrt(_dot(b, b))
+    b_norm = math.sqrt(_dot(b, b))
     if x0 is None:
         x = np.zeros_like(b)
-        r = b.copy()
-        img = None if restrict is None else np.zeros(restrict.shape)
+        residual = b.copy()                       # r = b - A x
+        full_image = None if restrict is None else np.zeros(restrict.shape)
     else:
         x = x0.copy()
-        ax, img = A(x)
-        r = b - ax
-        img = None if img is None else img.copy()
-    if bnorm == 0.0:
+        image_of_x, full_image = apply(x)
+        residual = b - image_of_x
+        full_image = None if full_image is None else full_image.copy()
+    if b_norm == 0.0:
         return CGResult(np.zeros_like(b), 0, 0.0, True, None if restrict is None else np.zeros(restrict.shape))
-    z = precondition(r) if precondition else r
-    p = z.copy()
-    rz = _dot(r, z)
-    res = math.sqrt(_dot(r, r)) / bnorm
-    it = 0
-    while res > rtol and it < maxiter:
-        Ap, Ap_full = A(p)
-        pAp = _dot(p, Ap)
-        if not pAp > 0.0:  # loss of positive definiteness: stop and report, never NaN
+    preconditioned = precondition(residual) if precondition else residual      # z = M r
+    direction = preconditioned.copy()                                          # p
+    r_dot_z = _dot(residual, preconditioned)
+    relative_residual = math.sqrt(_dot(residual, residual)) / b_norm
+    iterations = 0
+    while relative_residual > rtol and iterations < maxiter:
+        image_of_direction, full_image_of_direction = apply(direction)         # A p
+        curvature = _dot(direction, image_of_direction)                        # p.A p
+        if not curvature > 0.0:  # loss of positive definiteness: stop and report, never NaN
             break
-        alpha = rz / pAp
-        x += alpha * p
-        r -= alpha * Ap
-        if img is not None:
-            img += alpha * Ap_full
-        it += 1
-        res = math.sqrt(_dot(r, r)) / bnorm
-        if res <= rtol:
+        step = r_dot_z / curvature                                             # alpha
+        x += step * direction
+        residual -= step * image_of_direction
+        if full_image is not None:
+            full_image += step * full_image_of_direction
+        iterations += 1
+        relative_residual = math.sqrt(_dot(residual, residual)) / b_norm
+        if relative_residual <= rtol:
             break
-        z = precondition(r) if precondition else r
-        rz_new = _dot(r, z)
-        p *= rz_new / rz
-        p += z
-        rz = rz_new
-    return CGResult(x, it, res, res <= rtol, img)
+        preconditioned = precondition(residual) if precondition else residual
+        r_dot_z_new = _dot(residual, preconditioned)
+        direction *= r_dot_z_new / r_dot_z                                     # beta
+        direction += preconditioned
+        r_dot_z = r_dot_z_new
+    return CGResult(x, iterations, relative_residual, relative_residual <= rtol, full_image)

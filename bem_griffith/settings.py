@@ -37,7 +37,7 @@ class GriffithSettings:
         approach are unchanged (tested against the uncut cascade).
     preconditioner
         ``"fourier"`` (default): the inverse of the Fourier symbol of the element lattice
-        (``kernel.lattice_symbol``), applied on the padded grid in single precision; it cuts
+        (``halfspace.kernel.lattice_symbol``), applied on the padded grid in single precision; it cuts
         CG iterations about fivefold at the cost of one extra FFT pair each, also for
         elongated grids and k < 0, where the padded window's own symbol is a poor one.
     shrink_window

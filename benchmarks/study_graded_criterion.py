@@ -40,7 +40,7 @@ def stress_factors(k: float, per_radius: int) -> tuple[float, float]:
     prob = build_problem(cs.Scene(cs.Indenter(cs.Circle(1.0)), mat, cs.Adhesion(1.0)), bg.GriffithSettings(grid=cs.Grid(spacing=h)))
     S = prob.face
     n = int(S.sum())
-    A = spla.LinearOperator((n, n), matvec=lambda v: prob.op.apply_masked(v, S)[S])
+    A = spla.LinearOperator((n, n), matvec=lambda v: prob.operator.apply_masked(v, S)[S])
     p, info = spla.cg(A, np.ones(n), rtol=1e-12, maxiter=20_000)
     if info:
         raise RuntimeError(f"CG did not converge (k = {k}, N = {per_radius})")

@@ -79,7 +79,7 @@ def test_elongated_faces_get_a_positive_preconditioner_and_the_same_answer():
     preconditioning does not change the answer."""
     sc = dataclasses.replace(circle_scene(), indenter=cs.Indenter(cs.Rectangle(4.0, 1.0)))
     prob = bg.solver.build_problem(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=12)))
-    assert prob.op.symbol.min() < 0 < prob.inverse_symbol.min()
+    assert prob.operator.symbol.min() < 0 < prob.inverse_symbol.min()
     a, b = run(sc, 12), run(sc, 12, preconditioner="none")
     assert a.pulloff_force == pytest.approx(b.pulloff_force, rel=1e-8)
     assert np.array_equal(a.curve.contact_area, b.curve.contact_area)

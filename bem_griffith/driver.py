@@ -1,0 +1,224 @@
+"""Pulling: the event driver, the detachment cascade at a fixed approach, and the paper's
+fixed-step driver.
+
+State and rules (theory sheet, section 3)
+-----------------------------------------
+* An element of the contact set whose tension -p reaches sigma_c detaches.
+* A free element of the face re-attaches when its gap u - (d - h) closes (< 0).
+* Simultaneous detachments: at an event every element whose tension exceeds sigma_c
+  (within ``tie_tolerance`` of the largest, for round-off) leaves at once, then the set is
+  re-solved at the same approach and the pass repeats until no element exceeds sigma_c.
+  This is the paper's rule; it keeps symmetric partners together and makes the result
+  independent of element ordering.  Detaching one element at a time would only reorder a
+  cascade that runs to the same stable set in all the cases tested, at many more solves.
+
+Between events the contact set is fixed and the state is linear in the approach
+(``bem_griffith.contact_set``), so the event driver computes the next approach at which an
+element reaches sigma_c or a gap closes exactly; the fixed-step driver moves by ``step``.
+"""
+from __future__ import annotations
+
+import logging
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from contact_scene import Scene, Snapshot
+
+from .contact_set import ContactSolution, no_contact, solve_contact_set
+from .counters import WorkCounters
+from .problem import Problem
+from .recording import PullRecorder
+from .settings import GriffithSettings
+
+__all__ = ["PullOutcome", "pull", "next_event", "cascade", "gap_coefficients", "pull_targets"]
+
+log = logging.getLogger("bem_griffith")
+
+
+@dataclass
+class PullOutcome:
+    """How the pull ended.
+
+    final
+        The contact state at the last approach (no contact once detached).
+    last_stable
+        The last contact set that held, at the approach where it let go (None if it never did).
+    detachment_approach
+        The approach at which the last element let go (None if still attached).
+    events
+        Driver steps: events (event driver) or steps (fixed-step driver), each with its cascade.
+    aborted
+        The event limit stopped the pull.
+    reached_user_limit
+        The final target was the scene's ``pull_limit`` (then ending attached is the scene's
+        strong adhesion, not a failure).
+    messages
+        What went wrong or deserves saying, for the result's messages.
+    """
+
+    final: ContactSolution
+    last_stable: Snapshot | None = None
+    detachment_approach: float | None = None
+    events: int = 0
+    aborted: bool = False
+    reached_user_limit: bool = False
+    messages: list[str] = field(default_factory=list)
+
+
+def gap_coefficients(problem: Problem, solution: ContactSolution):
+    """The free part of the face and its gaps as linear functions of the approach,
+    gap(d) = slope d + offset = u(d) - (d - h): (free mask, slope, offset)."""
+    free = problem.face & ~solution.contact
+    slope = solution.displacement_per_approach[free] - 1.0
+    offset = problem.height[free] - solution.profile_displacement[free]
+    return free, slope, offset
+
+
+def next_event(problem: Problem, solution: ContactSolution, approach: float, target: float) -> float:
+    """The nearest approach between ``approach`` and ``target`` (in the direction of travel)
+    at which an element of the contact set reaches sigma_c or a free element's gap closes;
+    ``target`` if none."""
+    direction = 1.0 if target > approach else -1.0
+    nearest = target
+    eps = 1e-13 * max(abs(approach), abs(target), 1e-300)
+    per_approach, profile = solution.pressure_per_approach, solution.profile_pressure
+    loaded = per_approach != 0
+    # tension -p = sigma_c  <=>  d = (xh - sigma_c) / x1
+    at_critical_stress = (profile[loaded] - problem.critical_stress) / per_approach[loaded]
+    ahead = (at_critical_stress - approach) * direction >= -eps
+    if ahead.any():
+        candidates = at_critical_stress[ahead]
+        first = candidates.max() if direction < 0 else candidates.min()
+        if (first - nearest) * direction < 0:
+            nearest = first
+    free, slope, offset = gap_coefficients(problem, solution)
+    if slope.size:
+        closing = slope * direction < 0  # gap shrinks along the direction of travel
+        with np.errstate(divide="ignore"):
+            gap_closes_at = -offset[closing] / slope[closing]
+        ahead = (gap_closes_at - approach) * direction > eps
+        if ahead.any():
+            candidates = gap_closes_at[ahead]
+            first = candidates.max() if direction < 0 else candidates.min()
+            if (first - nearest) * direction < 0:
+                nearest = first
+    # an event already passed (tension above sigma_c at d) fires at once
+    if (nearest - approach) * direction < 0:
+        nearest = approach
+    return float(nearest)
+
+
+def _certainly_detached(problem: Problem, contact: np.ndarray, approach: float, settings: GriffithSettings) -> bool:
+    """Whether no face of the remaining area can hold at ``approach``: |d| beyond the margin
+    times the circle's critical approach of that area (Eq. 14 bounds every flat face of a
+    homogeneous body by the circle of its area)."""
+    if not (problem.flat and settings.stop_when_certainly_detached and approach < 0
+            and problem.effective_modulus is not None and problem.work_of_adhesion > 0):
+        return False
+    area = float(contact.sum()) * problem.cell_area
+    upper = problem.circle_critical_approach(area)
+    margin = 1.0 + max(settings.certainty_margin, 2.0 * problem.spacing / math.sqrt(area / math.pi))
+    if abs(approach) > margin * abs(upper):
+        log.debug("cascade at d = %.6g cut short with %d elements left: |d| > %.3g |d_c,upper| of the "
+                  "remaining area (Eq. 14)", approach, int(contact.sum()), margin)
+        return True
+    return False
+
+
+def cascade(problem: Problem, solution: ContactSolution, approach: float, settings: GriffithSettings,
+            counters: WorkCounters, messages: list, direction: float = -1.0) -> ContactSolution:
+    """Detach / re-attach at the fixed approach until no element exceeds sigma_c and no gap
+    is negative; returns ``solution`` itself when nothing changes.
+
+    A free element whose gap is zero (to round-off) re-attaches when the gap is closing along
+    the direction of travel: that is the gap event that brought the driver here."""
+    for _ in range(4 * problem.face_elements + 10):
+        tension = -solution.pressure(approach)
+        largest = tension.max() if tension.size else -np.inf
+        threshold = problem.critical_stress * (1 - settings.tie_tolerance)
+        detaching = tension >= threshold if largest >= threshold else np.zeros(tension.shape, bool)
+        free, slope, offset = gap_coefficients(problem, solution)
+        gap = slope * approach + offset
+        gap_tolerance = 1e-12 * max(abs(approach), problem.spacing * 1e-6)
+        attaching = (gap < -gap_tolerance) | ((gap <= gap_tolerance) & (slope * direction < 0))
+        if not detaching.any() and not attaching.any():
+            return solution
+        contact = solution.contact.copy()
+        contact.ravel()[np.flatnonzero(solution.contact.ravel())[detaching]] = False
+        contact.ravel()[np.flatnonzero(free.ravel())[attaching]] = True
+        counters.detached_elements += int(detaching.sum())
+        if not contact.any():
+            return no_contact(problem)
+        if _certainly_detached(problem, contact, approach, settings):
+            counters.cascades_cut += 1
+            return no_contact(problem)
+        solution = solve_contact_set(problem, contact, settings, solution, counters)
+    messages.append(f"cascade at d = {approach:.6g} did not settle")
+    counters.unsettled_cascades += 1
+    return solution
+
+
+def pull_targets(scene: Scene, pressed_approach: float, problem: Problem) -> tuple[list[float], bool]:
+    """Target approaches: the turning points, then the final pull; and whether the final
+    target is a user limit (so reaching it attached is reported, not an error)."""
+    limit = scene.loading.pull_limit
+    if limit is not None:
+        final, user = limit, True
+    else:
+        # far beyond any detachment the bounds allow (flat) or the press depth (curved)
+        scale = abs(pressed_approach) + problem.spacing
+        if problem.circle_critical_approach is not None:
+            scale += abs(problem.circle_critical_approach(float(problem.face.sum()) * problem.spacing**2))
+        final, user = pressed_approach - 1e3 * scale, False
+    return [*scene.loading.turning_points, final], user
+
+
+def _next_approach(problem: Problem, solution: ContactSolution, approach: float, target: float,
+                   settings: GriffithSettings) -> float:
+    if settings.driver == "event":
+        return next_event(problem, solution, approach, target)
+    step = settings.step if target > approach else -settings.step
+    return approach + step if (approach + step - target) * np.sign(step) < 0 else target
+
+
+def pull(problem: Problem, scene: Scene, settings: GriffithSettings, counters: WorkCounters,
+         pressed_approach: float, pressed: ContactSolution, recorder: PullRecorder) -> PullOutcome:
+    """Drive the approach through the scene's turning points to the final pull, cascading at
+    every event (or step), until the face detaches, the final target is reached or the event
+    limit stops it; every curve point and snapshot goes to ``recorder``."""
+    targets, reached_user_limit = pull_targets(scene, pressed_approach, problem)
+    outcome = PullOutcome(final=pressed, reached_user_limit=reached_user_limit)
+    cell = problem.cell_area
+    max_events = 20 * problem.face_elements + 1000
+    solution, approach = pressed, pressed_approach
+    for target in targets:
+        while solution.attached and approach != target:
+            upcoming = _next_approach(problem, solution, approach, target, settings)
+            recorder.snapshots_between(approach, upcoming, solution)
+            previous, approach = approach, upcoming
+            before = solution
+            if settings.driver == "event":
+                # admissible: at an event the first element sits exactly at sigma_c (a peak)
+                recorder.point(approach, solution)
+            solution = cascade(problem, solution, approach, settings, counters, outcome.messages,
+                               1.0 if target > previous else -1.0)
+            if solution is not before:
+                if not solution.attached:
+                    outcome.last_stable = Snapshot(float(approach), before.force(approach, cell), before.contact.copy(),
+                                                   problem.spacing, problem.origin)
+                    outcome.detachment_approach = approach
+                recorder.point(approach, solution)
+            elif settings.driver == "fixed_step":
+                # the paper's driver: the force after the step's cascade
+                recorder.point(approach, solution)
+            outcome.events += 1
+            if outcome.events > max_events:
+                outcome.messages.append(f"stopped after {outcome.events} events without detaching")
+                outcome.aborted = True
+                break
+        if not solution.attached or outcome.aborted:
+            break
+    outcome.final = solution
+    return outcome

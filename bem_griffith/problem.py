@@ -1,0 +1,158 @@
+"""The discretised problem: the face on its grid, the half-space operator, the profile and the
+critical stress of the local Griffith criterion, fixed for the duration of a solve."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from contact_scene import Homogeneous, PowerLawGraded, Scene, SceneError, rasterise, rasterise_periodic, theory
+from halfspace.kernel import graded_influence, love_influence, love_influence_periodic, padded_shape
+from halfspace.operator import HalfSpaceOperator
+
+from .criterion import stress_factor
+from .preconditioner import inverse_lattice_symbol
+from .settings import GriffithSettings
+from .windows import WindowMemo, windows_memory_bytes
+
+__all__ = ["Problem", "build_problem", "estimate_memory_gb", "max_elements_per_radius"]
+
+
+@dataclass(frozen=True, eq=False, kw_only=True)
+class Problem:
+    """Everything a solve needs, fixed for its duration.
+
+    operator
+        C: face-grid pressures to displacements (FFT convolution).
+    face
+        Boolean mask [ix, iy] of the grid cells that belong to the face.
+    height
+        The profile h at the cell centres (zero on a flat face).
+    spacing, origin
+        Element side Delta and the centre of cell [0, 0].
+    critical_stress
+        sigma_c of the local Griffith criterion (Eq. 22; graded: Eq. 42, calibrated or not).
+    flat
+        Whether the profile is flat (then the profile solves are skipped).
+    effective_modulus
+        E* of a homogeneous body; None for a graded one.
+    work_of_adhesion
+        w.
+    inverse_symbol
+        The Fourier preconditioner on the padded grid, or None.
+    circle_critical_approach
+        area -> the critical approach of a circular face of that area (Eq. 14's upper bound;
+        Eq. 39's circle for graded bodies); None without adhesion.
+    point_kernel
+        (A, k) of the point Green's function g(r) = A / r^(1 + k), for the preconditioner.
+    windows
+        The memo of sub-grid windows, or None when windows are off.
+    """
+
+    operator: HalfSpaceOperator
+    face: np.ndarray
+    height: np.ndarray
+    spacing: float
+    origin: tuple[float, float]
+    critical_stress: float
+    flat: bool
+    effective_modulus: float | None
+    work_of_adhesion: float
+    inverse_symbol: np.ndarray | None = None
+    circle_critical_approach: Callable[[float], float] | None = None
+    point_kernel: tuple[float, float] | None = None
+    windows: WindowMemo | None = None
+
+    @property
+    def cell_area(self) -> float:
+        return self.spacing**2
+
+    @property
+    def face_elements(self) -> int:
+        return int(self.face.sum())
+
+
+def estimate_memory_gb(nx: int, ny: int) -> float:
+    """Working memory of a solve on an nx x ny grid: the padded kernel, its transform and
+    scratch, two complex transforms in flight, the remembered windows and a dozen face-grid
+    vectors."""
+    padded = 4 * nx * ny
+    return (padded * 8 * 3 + padded * 16 * 3 + windows_memory_bytes(padded) + nx * ny * 8 * 12) / 1e9
+
+
+def max_elements_per_radius(scene: Scene, max_memory_gb: float | None = None) -> float:
+    """The finest grid (elements per equivalent radius) whose memory estimate fits in
+    ``max_memory_gb`` (default: :class:`GriffithSettings`' limit), from the face's bounding box."""
+    limit = GriffithSettings().max_memory_gb if max_memory_gb is None else max_memory_gb
+    shape = scene.indenter.shape
+    xmin, ymin, xmax, ymax = shape.bounds
+
+    def need(n: float) -> float:
+        h = shape.equivalent_radius / n
+        return estimate_memory_gb(math.ceil((xmax - xmin) / h) + 2, math.ceil((ymax - ymin) / h) + 2)
+
+    fits, too_fine = 1.0, 2.0
+    while need(too_fine) <= limit:
+        fits, too_fine = too_fine, 2 * too_fine
+    for _ in range(40):                      # need(n) grows like n^2: bisect to a whole number
+        middle = 0.5 * (fits + too_fine)
+        fits, too_fine = (middle, too_fine) if need(middle) <= limit else (fits, middle)
+    return math.floor(fits)
+
+
+def build_problem(scene: Scene, settings: GriffithSettings) -> Problem:
+    """Rasterise the face, build the half-space operator and the critical stress; refuse
+    grids beyond the memory limit and periodic graded bodies with a SceneError."""
+    material = scene.material
+    shape = scene.indenter.shape
+    periodic = settings.grid.periodic
+    if periodic and not isinstance(material, Homogeneous):
+        raise SceneError("grid.periodic", "the periodic half-space is implemented for homogeneous bodies only "
+                         "(the graded kernel's image sum needs its own regularisation); use periodic = false")
+    h = settings.grid.spacing_for(shape)
+    raster = rasterise_periodic(shape, h, settings.grid.period) if periodic else rasterise(shape, h)
+    nx, ny = raster.shape
+    need = estimate_memory_gb(nx, ny) / (4 if periodic else 1)
+    if periodic and nx > 1024:
+        # the kernel's exact image sum costs 33^2 Love evaluations per coefficient, growing like
+        # n^2: minutes beyond 1024^2
+        raise SceneError("grid.period", f"a periodic cell of {nx} x {ny} elements (> 1024 across) is too large for the "
+                         "image sum of its kernel; coarsen the grid or shrink the period")
+    if need > settings.max_memory_gb:
+        raise SceneError(
+            "settings.max_memory_gb",
+            f"a {nx} x {ny} grid needs about {need:.1f} GB (> {settings.max_memory_gb:g}); raise max_memory_gb or coarsen the grid",
+        )
+    w = scene.adhesion.work_of_adhesion
+    padded = padded_shape(nx, ny)
+    if isinstance(material, Homogeneous):
+        E = material.effective_modulus
+        kernel = love_influence_periodic(nx, h, E) if periodic else love_influence(nx, ny, h, E, padded)
+        sigma_c = theory.critical_stress(E_star=E, work=w, spacing=h)
+        circle_approach = (lambda area: theory.upper_bound_approach(E_star=E, work=w, area=area)) if w > 0 else None
+        point_kernel = (1.0 / (math.pi * E), 0.0)
+    elif isinstance(material, PowerLawGraded):
+        E = None
+        E0, c0, k = material.surface_modulus, material.reference_depth, material.exponent
+        kernel = graded_influence(nx, ny, h, E0, c0, k, padded)
+        point_kernel = (theory.graded_green_coefficient(E0=E0, c0=c0, k=k), k)
+        sigma_c = theory.graded_critical_stress(E0=E0, c0=c0, k=k, work=w, spacing=h)
+        if w > 0:
+            sigma_c *= stress_factor(k, settings.graded_criterion)
+        circle_approach = ((lambda area: theory.graded_critical_approach(E0=E0, c0=c0, k=k,
+                                                                         radius=math.sqrt(area / math.pi), work=w))
+                           if w > 0 else None)
+    else:  # pragma: no cover - Scene validates the material
+        raise SceneError("material", f"unsupported material {type(material).__name__}")
+    operator = HalfSpaceOperator(kernel, (nx, ny), settings.workers, periodic=periodic)
+    X, Y = raster.centres()
+    height = scene.indenter.profile.height(X, Y)
+    inverse = (inverse_lattice_symbol(operator.padded_shape, h, point_kernel)
+               if settings.preconditioner == "fourier" else None)
+    return Problem(operator=operator, face=raster.mask, height=np.asarray(height, float), spacing=h,
+                   origin=raster.origin, critical_stress=sigma_c, flat=scene.indenter.profile.is_flat,
+                   effective_modulus=E, work_of_adhesion=w, inverse_symbol=inverse,
+                   circle_critical_approach=circle_approach, point_kernel=point_kernel,
+                   windows=WindowMemo() if settings.shrink_window and not periodic else None)
