@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 import contact_scene as cs
-from contact_scene.shapes import _raster_incircle
+from contact_scene.shapes.numerical import raster_area, raster_incircle
 
 SHAPES = {
     "circle": cs.Circle(1.0),
@@ -64,8 +64,8 @@ def test_incircle_is_inscribed_and_maximal(name):
     for rho in (0.999 * r, 0.5 * r):
         assert s.contains(c[0] + rho * np.cos(t), c[1] + rho * np.sin(t)).all()
     # independent check on a fine raster (accurate to about 1e-3 of the size)
-    ref = _raster_incircle(s, 1024)
-    assert r == pytest.approx(ref.radius, abs=2e-3 * s.size)
+    ref_radius, _ = raster_incircle(s, 1024)
+    assert r == pytest.approx(ref_radius, abs=2e-3 * s.size)
 
 
 def test_closed_set_includes_boundary():
@@ -165,14 +165,12 @@ def test_composite_faces_take_their_own_parameters_positionally():
 
 
 def test_mixed_brush_has_circular_and_square_columns_and_an_exact_area():
-    from contact_scene.shapes import _raster_area
-
     b = cs.Brush(1.0, 0.07, layout="mixed", count=30, seed=1)
     kinds = {type(p) for p in b.parts}
     assert kinds == {cs.Circle, cs.Square} and len(b.parts) == 30 and b.area_is_exact
     h = 1.0 / 2048                                   # the raster's cell; boundary cells are the error
     perimeter = sum(2 * math.pi * p.radius if isinstance(p, cs.Circle) else 4 * p.side for p in b.parts)
-    assert abs(_raster_area(b) - b.area) <= perimeter * h
+    assert abs(raster_area(b) - b.area) <= perimeter * h
     assert cs.Brush(1.0, 0.07, layout="mixed", count=30, seed=1) == b
     with pytest.raises(cs.SceneError, match="indenter.layout"):
         cs.Brush(1.0, 0.07, layout="spiral")

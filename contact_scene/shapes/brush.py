@@ -1,0 +1,84 @@
+"""Brushes (Fig. 8): a square face whose adhering part is an array of separate pillars."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import SceneError
+from .composite import Union
+from .conics import Circle
+from .fields import choice, real, whole
+from .polygons import Square
+
+__all__ = ["Brush"]
+
+_RANDOM_LAYOUTS = ("random", "mixed")
+#: placement attempts per pillar before a random layout gives up
+_ATTEMPTS_PER_PILLAR = 200
+
+
+def _placed_at_random(layout: str) -> bool:
+    return layout in _RANDOM_LAYOUTS
+
+
+@dataclass(frozen=True)
+class Brush(Union):
+    """Circular pillars of radius ``pillar_radius`` inside a square of side ``side`` (Fig. 8).
+
+    ``layout = "regular"`` puts them on a square lattice of pitch ``pitch``; ``"random"``
+    places ``count`` non-overlapping pillars uniformly at random (reproducible by ``seed``);
+    ``"mixed"`` places ``count`` columns at random too, alternately circular and square, each
+    sized uniformly between half and all of ``pillar_radius`` (a square column of "radius" r
+    has side r sqrt(pi), the area of the disc), as in the paper's mixed brushes (Fig. 8a).
+    The nominal area is the square's, so area / nominal_area is the phi of Eq. 24.
+    """
+
+    parts: tuple = field(default=(), init=False, repr=False)
+    side: float = real(1.0, gt=0)
+    pillar_radius: float = real(0.05, gt=0, le=lambda brush: brush.side / 2)
+    layout: str = choice("regular", ("regular", *_RANDOM_LAYOUTS))
+    pitch: float = real(0.2, gt=lambda brush: 2 * brush.pillar_radius, when=lambda brush: brush.layout == "regular")
+    count: int = whole(0, ge=1, le=100_000, when=lambda brush: _placed_at_random(brush.layout))
+    seed: int = whole(0, ge=0, when=lambda brush: _placed_at_random(brush.layout))
+    kind = "brush"
+
+    def _complete(self):
+        parts = self._random_parts() if _placed_at_random(self.layout) else self._lattice_parts()
+        object.__setattr__(self, "parts", parts)
+
+    def _lattice_parts(self) -> tuple:
+        radius, pitch = self.pillar_radius, self.pitch
+        per_row = int(math.floor((self.side - 2 * radius) / pitch + 1e-9)) + 1
+        first = -(per_row - 1) * pitch / 2
+        centres = [(first + i * pitch, first + j * pitch) for i in range(per_row) for j in range(per_row)]
+        return tuple(Circle(radius, c) for c in centres)
+
+    def _random_parts(self) -> tuple:
+        rng = np.random.default_rng(self.seed)
+        mixed = self.layout == "mixed"
+        radius, half_side = self.pillar_radius, self.side / 2
+        placed = []                                     # (x, y, half-width of the bounding box)
+        for _ in range(_ATTEMPTS_PER_PILLAR * self.count):
+            if len(placed) == self.count:
+                break
+            r = rng.uniform(0.5 * radius, radius) if mixed else radius
+            c = rng.uniform(-half_side + radius, half_side - radius, 2)
+            # a small gap keeps the pillars' bounding boxes apart, so the area stays exact
+            if all(max(abs(c[0] - q[0]), abs(c[1] - q[1])) > (r + q[2]) * 1.000001 for q in placed):
+                placed.append((float(c[0]), float(c[1]), r))
+        if len(placed) < self.count:
+            raise SceneError("indenter.count", f"could place only {len(placed)} of {self.count} non-overlapping "
+                                               "pillars; lower count or pillar_radius")
+        return tuple(Square(r * math.sqrt(math.pi), center=(x, y)) if mixed and i % 2 else Circle(r, (x, y))
+                     for i, (x, y, r) in enumerate(placed))
+
+    @property
+    def nominal_area(self):
+        return self.side**2
+
+    @property
+    def bounds(self):
+        half_side = self.side / 2
+        return (-half_side, -half_side, half_side, half_side)

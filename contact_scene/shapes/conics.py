@@ -1,0 +1,88 @@
+"""Faces bounded by one conic: the circle (Kendall's punch) and the ellipse (Galin's)."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .base import BOUNDARY_REL_TOL, Incircle, Shape
+from .fields import point, real
+
+__all__ = ["Circle", "Ellipse"]
+
+
+@dataclass(frozen=True)
+class Circle(Shape):
+    radius: float = real(gt=0)
+    center: tuple[float, float] = point()
+    kind = "circle"
+
+    def contains(self, x, y):
+        x, y = np.asarray(x, float), np.asarray(y, float)
+        return np.hypot(x - self.center[0], y - self.center[1]) <= self.radius * (1 + BOUNDARY_REL_TOL)
+
+    def signed_distance(self, x, y):
+        return np.hypot(np.asarray(x) - self.center[0], np.asarray(y) - self.center[1]) - self.radius
+
+    @property
+    def area(self):
+        return math.pi * self.radius**2
+
+    @property
+    def bounds(self):
+        cx, cy = self.center
+        r = self.radius
+        return (cx - r, cy - r, cx + r, cy + r)
+
+    @property
+    def centroid(self):
+        return self.center
+
+    def incircle(self):
+        return Incircle(self.radius, self.center)
+
+    def describe(self):
+        return f"circle r={self.radius:g}"
+
+
+@dataclass(frozen=True)
+class Ellipse(Shape):
+    semi_major: float = real(gt=0)
+    semi_minor: float = real(gt=0, le=lambda ellipse: ellipse.semi_major)
+    rotation_deg: float = real(0.0)
+    center: tuple[float, float] = point()
+    kind = "ellipse"
+
+    def contains(self, x, y):
+        t = math.radians(self.rotation_deg)
+        dx = np.asarray(x, float) - self.center[0]
+        dy = np.asarray(y, float) - self.center[1]
+        along_major = dx * math.cos(t) + dy * math.sin(t)
+        along_minor = -dx * math.sin(t) + dy * math.cos(t)
+        return (along_major / self.semi_major) ** 2 + (along_minor / self.semi_minor) ** 2 <= 1 + 2 * BOUNDARY_REL_TOL
+
+    @property
+    def area(self):
+        return math.pi * self.semi_major * self.semi_minor
+
+    @property
+    def eccentricity(self) -> float:
+        return math.sqrt(1 - (self.semi_minor / self.semi_major) ** 2)
+
+    @property
+    def bounds(self):
+        t = math.radians(self.rotation_deg)
+        a, b = self.semi_major, self.semi_minor
+        half_width = math.hypot(a * math.cos(t), b * math.sin(t))
+        half_height = math.hypot(a * math.sin(t), b * math.cos(t))
+        cx, cy = self.center
+        return (cx - half_width, cy - half_height, cx + half_width, cy + half_height)
+
+    @property
+    def centroid(self):
+        return self.center
+
+    def incircle(self):
+        # the curvature radius at the ends of the minor axis, a^2/b, is >= b: the circle of radius b fits
+        return Incircle(self.semi_minor, self.center)

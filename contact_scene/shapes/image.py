@@ -1,0 +1,92 @@
+"""A face read from a picture: dark pixels adhere."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+from scipy import ndimage
+
+from ..errors import SceneError
+from .base import Incircle, Shape
+from .fields import real
+
+__all__ = ["ImageMask"]
+
+#: ITU-R BT.601 luma weights: the grey level of an RGB pixel
+_LUMA = np.array([0.299, 0.587, 0.114])
+
+
+@dataclass(frozen=True)
+class ImageMask(Shape):
+    """A face read from an image: pixels darker than ``threshold`` (0..1) belong to the face
+    (``invert`` flips that).  Pixel (row 0, col 0) is the top-left corner; the image is
+    centred on the origin, x to the right, y up."""
+
+    path: str = ""
+    pixel_size: float = real(1.0, gt=0)
+    threshold: float = real(0.5, ge=0, le=1)
+    invert: bool = False
+    kind = "image"
+
+    def _complete(self):
+        if not np.any(self._mask):
+            raise SceneError("indenter.path", f"the image {self.path!r} has no face pixels (none darker than threshold={self.threshold:g})")
+
+    @cached_property
+    def _mask(self) -> np.ndarray:
+        import matplotlib.image as mpimg
+
+        try:
+            img = np.asarray(mpimg.imread(self.path), float)
+        except (OSError, ValueError, SyntaxError) as exc:
+            raise SceneError("indenter.path", f"cannot read image {self.path!r}: {exc}") from None
+        if img.ndim == 3:
+            rgb = img[..., :3]
+            if img.dtype.kind in "ui" or rgb.max() > 1:
+                rgb = rgb / 255.0
+            img = rgb @ _LUMA
+        elif img.max() > 1:
+            img = img / 255.0
+        face = img < self.threshold
+        if self.invert:
+            face = ~face
+        # rows run down the image; store as [ix, iy] with y up
+        return np.ascontiguousarray(face[::-1, :].T)
+
+    def contains(self, x, y):
+        mask = self._mask
+        nx, ny = mask.shape
+        h = self.pixel_size
+        ix = np.floor(np.asarray(x, float) / h + nx / 2).astype(np.int64)
+        iy = np.floor(np.asarray(y, float) / h + ny / 2).astype(np.int64)
+        in_image = (ix >= 0) & (ix < nx) & (iy >= 0) & (iy < ny)
+        out = np.zeros(np.broadcast(ix, iy).shape, bool)
+        out[in_image] = mask[ix[in_image], iy[in_image]]
+        return out
+
+    @property
+    def area(self):
+        return float(np.count_nonzero(self._mask)) * self.pixel_size**2
+
+    @property
+    def bounds(self):
+        nx, ny = self._mask.shape
+        h = self.pixel_size
+        return (-nx * h / 2, -ny * h / 2, nx * h / 2, ny * h / 2)
+
+    @property
+    def centroid(self):
+        ix, iy = np.nonzero(self._mask)
+        nx, ny = self._mask.shape
+        h = self.pixel_size
+        return (float((ix.mean() + 0.5 - nx / 2) * h), float((iy.mean() + 0.5 - ny / 2) * h))
+
+    def incircle(self):
+        padded = np.pad(self._mask, 1)
+        depth = ndimage.distance_transform_edt(padded)
+        i = np.unravel_index(np.argmax(depth), depth.shape)
+        nx, ny = self._mask.shape
+        h = self.pixel_size
+        c = ((i[0] - 1 + 0.5 - nx / 2) * h, (i[1] - 1 + 0.5 - ny / 2) * h)
+        return Incircle(float((depth[i] - 0.5) * h), (float(c[0]), float(c[1])))

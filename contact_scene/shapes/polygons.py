@@ -1,0 +1,302 @@
+"""Faces bounded by straight edges: any simple polygon, and the regular ones the paper uses
+(square, rectangle, equilateral triangle, regular n-gon) with their closed-form incircles."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+from scipy import optimize
+
+from ..errors import SceneError, check_real
+from . import numerical
+from .base import Incircle, Shape
+from .fields import point, real, whole
+
+__all__ = ["PolygonalShape", "Polygon", "Rectangle", "Square", "Triangle", "RegularPolygon",
+           "shoelace_area", "rotate_points"]
+
+#: edge pairs tested for crossings per vectorised batch (bounds the memory of the test)
+_EDGE_PAIRS_PER_BATCH = 2_000_000
+
+
+def shoelace_area(vertices: np.ndarray) -> float:
+    """Signed area of the polygon (positive when the vertices run counter-clockwise)."""
+    x, y = vertices[:, 0], vertices[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
+
+
+def rotate_points(points: np.ndarray, angle_deg: float, center) -> np.ndarray:
+    """Points given about the origin, rotated counter-clockwise and moved to ``center``."""
+    t = math.radians(angle_deg)
+    rotation = np.array([[math.cos(t), -math.sin(t)], [math.sin(t), math.cos(t)]])
+    return points @ rotation.T + np.asarray(center, float)
+
+
+def _segments_cross(p, q, r, s) -> np.ndarray:
+    """Whether segments pq and rs cross properly (arrays of points, shape (..., 2))."""
+    def orientation(a, b, c):
+        return (b[..., 0] - a[..., 0]) * (c[..., 1] - a[..., 1]) - (b[..., 1] - a[..., 1]) * (c[..., 0] - a[..., 0])
+    side_p, side_q = orientation(r, s, p), orientation(r, s, q)
+    side_r, side_s = orientation(p, q, r), orientation(p, q, s)
+    return ((side_p * side_q) < 0) & ((side_r * side_s) < 0)
+
+
+class PolygonalShape(Shape):
+    """A simple polygon given by ``vertices`` (counter-clockwise after validation)."""
+
+    @property
+    def vertices(self) -> np.ndarray:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    @cached_property
+    def _verts(self) -> np.ndarray:
+        v = np.asarray(self.vertices, dtype=float)
+        if v.ndim != 2 or v.shape[1] != 2 or len(v) < 3:
+            raise SceneError("indenter.vertices", f"a polygon needs at least 3 (x, y) vertices (got {len(v)})")
+        if not np.all(np.isfinite(v)):
+            raise SceneError("indenter.vertices", "vertices must be finite numbers")
+        self._check_simple(v)
+        signed_area = shoelace_area(v)
+        extent = np.ptp(v, axis=0).max()
+        if abs(signed_area) <= 1e-12 * extent**2 or extent == 0:
+            raise SceneError("indenter.vertices", "the polygon is empty (zero area); give at least 3 non-collinear vertices")
+        return v[::-1].copy() if signed_area < 0 else v
+
+    @staticmethod
+    def _check_simple(v: np.ndarray) -> None:
+        n = len(v)
+        if n < 4:
+            return
+        starts, ends = v, np.roll(v, -1, axis=0)
+        i, j = np.triu_indices(n, k=2)
+        keep = ~((i == 0) & (j == n - 1))  # the first and last edge share a vertex
+        i, j = i[keep], j[keep]
+        for batch_start in range(0, len(i), _EDGE_PAIRS_PER_BATCH):
+            batch = slice(batch_start, batch_start + _EDGE_PAIRS_PER_BATCH)
+            crossing = _segments_cross(starts[i[batch]], ends[i[batch]], starts[j[batch]], ends[j[batch]])
+            if crossing.any():
+                k = np.flatnonzero(crossing)[0] + batch_start
+                raise SceneError(
+                    "indenter.vertices",
+                    f"the polygon intersects itself (edges {i[k]} and {j[k]} cross); give a simple polygon",
+                )
+
+    @property
+    def area(self):
+        return float(shoelace_area(self._verts))
+
+    @property
+    def bounds(self):
+        v = self._verts
+        return (float(v[:, 0].min()), float(v[:, 1].min()), float(v[:, 0].max()), float(v[:, 1].max()))
+
+    @property
+    def centroid(self):
+        v = self._verts
+        x, y = v[:, 0], v[:, 1]
+        x_next, y_next = np.roll(x, -1), np.roll(y, -1)
+        cross = x * y_next - x_next * y
+        twice_area = cross.sum()
+        return (float(((x + x_next) * cross).sum() / (3 * twice_area)),
+                float(((y + y_next) * cross).sum() / (3 * twice_area)))
+
+    @cached_property
+    def is_convex(self) -> bool:
+        v = self._verts
+        edges = np.roll(v, -1, axis=0) - v
+        turn = edges[:, 0] * np.roll(edges[:, 1], -1) - edges[:, 1] * np.roll(edges[:, 0], -1)
+        return bool(np.all(turn >= -1e-12 * self.size**2))
+
+    def contains(self, x, y):
+        x = np.asarray(x, float)
+        y = np.asarray(y, float)
+        shape = np.broadcast(x, y).shape
+        px = np.broadcast_to(x, shape).ravel()
+        py = np.broadcast_to(y, shape).ravel()
+        order = np.argsort(py, kind="stable")
+        xs, ys = px[order], py[order]
+        inside = np.zeros(len(xs), bool)
+        tol = self.tolerance
+        v = self._verts
+        for (x0, y0), (x1, y1) in zip(v, np.roll(v, -1, axis=0)):
+            i0 = np.searchsorted(ys, min(y0, y1) - tol, "left")
+            i1 = np.searchsorted(ys, max(y0, y1) + tol, "right")
+            if i1 <= i0:
+                continue
+            X, Y = xs[i0:i1], ys[i0:i1]
+            # even-odd crossing with the half-open rule; the boundary test below closes the set
+            cross = (y0 > Y) != (y1 > Y)
+            if cross.any():
+                x_cross = x0 + (Y[cross] - y0) * (x1 - x0) / (y1 - y0)
+                idx = np.flatnonzero(cross)[X[cross] < x_cross]
+                inside[i0 + idx] ^= True
+            # closed set: points within tol of the edge are inside
+            ex, ey = x1 - x0, y1 - y0
+            t = np.clip(((X - x0) * ex + (Y - y0) * ey) / (ex * ex + ey * ey), 0, 1)
+            on_edge = np.hypot(X - (x0 + t * ex), Y - (y0 + t * ey)) <= tol
+            inside[i0:i1] |= on_edge
+        out = np.empty(len(xs), bool)
+        out[order] = inside
+        return out.reshape(shape)
+
+    def signed_distance(self, x, y):
+        """Exact signed distance to the boundary (negative inside)."""
+        x = np.asarray(x, float)
+        y = np.asarray(y, float)
+        v = self._verts
+        d = np.full(np.broadcast(x, y).shape, np.inf)
+        for (x0, y0), (x1, y1) in zip(v, np.roll(v, -1, axis=0)):
+            ex, ey = x1 - x0, y1 - y0
+            t = np.clip(((x - x0) * ex + (y - y0) * ey) / (ex * ex + ey * ey), 0, 1)
+            d = np.minimum(d, np.hypot(x - (x0 + t * ex), y - (y0 + t * ey)))
+        return np.where(self.contains(x, y), -d, d)
+
+    def incircle(self):
+        v = self._verts
+        if self.is_convex:
+            # Chebyshev centre: max r s.t. n_i . c + r <= n_i . v_i for every edge (an LP)
+            edges = np.roll(v, -1, axis=0) - v
+            normals = np.column_stack([edges[:, 1], -edges[:, 0]]) / np.hypot(edges[:, 0], edges[:, 1])[:, None]
+            A = np.column_stack([normals, np.ones(len(normals))])
+            b = np.einsum("ij,ij->i", normals, v)
+            res = optimize.linprog([0, 0, -1], A_ub=A, b_ub=b, bounds=[(None, None)] * 3, method="highs")
+            cx, cy, r = res.x
+            return Incircle(float(r), (float(cx), float(cy)))
+        # non-convex: best point of a sampling grid, polished on the exact distance
+        X, Y, _ = numerical.fine_grid(self, 200)
+        depth = -self.signed_distance(X, Y)
+        i = np.unravel_index(np.argmax(depth), depth.shape)
+        res = optimize.minimize(
+            lambda c: float(self.signed_distance(c[0], c[1])), [X[i], Y[i]],
+            method="Nelder-Mead", options={"xatol": 1e-12 * self.size, "fatol": 1e-14 * self.size},
+        )
+        c = res.x if -res.fun >= depth[i] else (X[i], Y[i])
+        r = max(-res.fun, depth[i])
+        return Incircle(float(r), (float(c[0]), float(c[1])))
+
+    def rotated(self, angle_deg, about=None):
+        about = self.centroid if about is None else about
+        t = math.radians(angle_deg)
+        rotation = np.array([[math.cos(t), -math.sin(t)], [math.sin(t), math.cos(t)]])
+        return Polygon(tuple(map(tuple, (self._verts - about) @ rotation.T + about)))
+
+    def mirrored(self, about=None):
+        about = self.centroid if about is None else about
+        v = self._verts.copy()
+        v[:, 0] = 2 * about[0] - v[:, 0]
+        return Polygon(tuple(map(tuple, v[::-1])))
+
+    def scaled(self, factor):
+        check_real("scale", factor, lo=0, lo_open=True)
+        return Polygon(tuple(map(tuple, self._verts * factor)))
+
+
+@dataclass(frozen=True)
+class Polygon(PolygonalShape):
+    vertices: tuple = ()
+    kind = "polygon"
+
+    def _complete(self):
+        try:
+            verts = tuple((float(a), float(b)) for a, b in self.vertices)
+        except (TypeError, ValueError):
+            raise SceneError("indenter.vertices", "must be a list of [x, y] number pairs") from None
+        object.__setattr__(self, "vertices", verts)
+        self._verts  # validate now
+
+
+@dataclass(frozen=True)
+class Rectangle(PolygonalShape):
+    width: float = real(gt=0)
+    height: float = real(gt=0)
+    rotation_deg: float = real(0.0)
+    center: tuple[float, float] = point()
+    kind = "rectangle"
+
+    @property
+    def vertices(self):
+        w, h = self.width / 2, self.height / 2
+        return rotate_points(np.array([[-w, -h], [w, -h], [w, h], [-w, h]]), self.rotation_deg, self.center)
+
+    @property
+    def aspect_ratio(self) -> float:
+        return max(self.width, self.height) / min(self.width, self.height)
+
+    @property
+    def centroid(self):
+        return self.center
+
+    def incircle(self):
+        return Incircle(min(self.width, self.height) / 2, self.center)
+
+    def describe(self):
+        return f"rectangle {self.width:g} x {self.height:g}"
+
+
+@dataclass(frozen=True)
+class Square(PolygonalShape):
+    side: float = real(gt=0)
+    rotation_deg: float = real(0.0)
+    center: tuple[float, float] = point()
+    kind = "square"
+
+    @property
+    def vertices(self):
+        s = self.side / 2
+        return rotate_points(np.array([[-s, -s], [s, -s], [s, s], [-s, s]]), self.rotation_deg, self.center)
+
+    @property
+    def centroid(self):
+        return self.center
+
+    def incircle(self):
+        return Incircle(self.side / 2, self.center)
+
+    def describe(self):
+        return f"square side={self.side:g}"
+
+
+@dataclass(frozen=True)
+class Triangle(PolygonalShape):
+    """A triangle from three vertices; ``Triangle.equilateral(side)`` for the paper's punch."""
+
+    vertices: tuple = ()
+    kind = "triangle"
+
+    def _complete(self):
+        if len(self.vertices) != 3:
+            raise SceneError("indenter.vertices", f"a triangle needs exactly 3 vertices (got {len(self.vertices)})")
+        object.__setattr__(self, "vertices", Polygon(self.vertices).vertices)
+        self._verts  # validate now
+
+    @classmethod
+    def equilateral(cls, side: float, rotation_deg: float = 0.0, center=(0.0, 0.0)) -> "Triangle":
+        side = check_real("indenter.side", side, lo=0, lo_open=True)
+        circumradius = side / math.sqrt(3)
+        t = np.radians(90 + np.array([0, 120, 240]))
+        corners = np.column_stack([circumradius * np.cos(t), circumradius * np.sin(t)])
+        return cls(tuple(map(tuple, rotate_points(corners, rotation_deg, center))))
+
+
+@dataclass(frozen=True)
+class RegularPolygon(PolygonalShape):
+    n_sides: int = whole(ge=3, le=100_000)
+    circumradius: float = real(gt=0)
+    rotation_deg: float = real(0.0)
+    center: tuple[float, float] = point()
+    kind = "regular_polygon"
+
+    @property
+    def vertices(self):
+        t = 2 * np.pi * np.arange(self.n_sides) / self.n_sides
+        corners = self.circumradius * np.column_stack([np.cos(t), np.sin(t)])
+        return rotate_points(corners, self.rotation_deg, self.center)
+
+    @property
+    def centroid(self):
+        return self.center
+
+    def incircle(self):
+        return Incircle(self.circumradius * math.cos(math.pi / self.n_sides), self.center)

@@ -1,0 +1,75 @@
+"""Any face rotated, mirrored or scaled, without rebuilding it."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from .base import Incircle, Shape
+from .fields import real
+
+__all__ = ["Transformed"]
+
+
+@dataclass(frozen=True)
+class Transformed(Shape):
+    """A shape rotated (counter-clockwise, degrees), mirrored (x -> -x, before rotating) and
+    scaled about the point ``about``."""
+
+    shape: Shape = None
+    rotation_deg: float = 0.0
+    mirror: bool = False
+    scale: float = real(1.0, gt=0, name="scale")
+    about: tuple[float, float] = (0.0, 0.0)
+    kind = "transformed"
+
+    @cached_property
+    def _matrix(self) -> np.ndarray:
+        t = math.radians(self.rotation_deg)
+        M = self.scale * np.array([[math.cos(t), -math.sin(t)], [math.sin(t), math.cos(t)]])
+        if self.mirror:
+            M = M @ np.diag([-1.0, 1.0])
+        return M
+
+    def _forward(self, x, y):
+        M = self._matrix
+        ax, ay = self.about
+        return ax + M[0, 0] * (x - ax) + M[0, 1] * (y - ay), ay + M[1, 0] * (x - ax) + M[1, 1] * (y - ay)
+
+    def contains(self, x, y):
+        inverse = np.linalg.inv(self._matrix)
+        ax, ay = self.about
+        dx, dy = np.asarray(x, float) - ax, np.asarray(y, float) - ay
+        return self.shape.contains(ax + inverse[0, 0] * dx + inverse[0, 1] * dy,
+                                   ay + inverse[1, 0] * dx + inverse[1, 1] * dy)
+
+    @property
+    def area(self):
+        return self.shape.area * self.scale**2
+
+    @property
+    def nominal_area(self):
+        return self.shape.nominal_area * self.scale**2
+
+    @property
+    def area_is_exact(self):
+        return self.shape.area_is_exact
+
+    @property
+    def bounds(self):
+        # the transformed bounding box of the original: conservative, which is all rasterising needs
+        x0, y0, x1, y1 = self.shape.bounds
+        X, Y = self._forward(np.array([x0, x1, x1, x0]), np.array([y0, y0, y1, y1]))
+        return (float(X.min()), float(Y.min()), float(X.max()), float(Y.max()))
+
+    @property
+    def centroid(self):
+        cx, cy = self._forward(*self.shape.centroid)
+        return (float(cx), float(cy))
+
+    def incircle(self):
+        r, c = self.shape.incircle()
+        cx, cy = self._forward(*c)
+        return Incircle(r * self.scale, (float(cx), float(cy)))
