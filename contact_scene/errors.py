@@ -23,24 +23,28 @@ class SceneError(ValueError):
 
 
 def _describe(lo, hi, lo_open, hi_open) -> str:
-    """The allowed values as a phrase that follows "must be (a number)": "in [0, 1)", "> 0"."""
+    """The allowed values as a phrase that follows "must be": "in [0, 1)", "> 0" ("" when unbounded)."""
     if lo is not None and hi is not None:
         return f"in {'(' if lo_open else '['}{lo:g}, {hi:g}{')' if hi_open else ']'}"
     if lo is not None:
         return f"{'>' if lo_open else '>='} {lo:g}"
     if hi is not None:
         return f"{'<' if hi_open else '<='} {hi:g}"
-    return "any finite number"
+    return ""
 
 
 def check_real(field: str, value, *, lo=None, hi=None, lo_open=False, hi_open=False) -> float:
-    """Return ``value`` as a finite float inside the given interval, or raise SceneError."""
+    """Return ``value`` as a finite float inside the given interval, or raise SceneError.
+
+    ``lo`` and ``hi`` are the lower and upper bounds (None: unbounded); ``lo_open`` and
+    ``hi_open`` exclude them."""
     allowed = _describe(lo, hi, lo_open, hi_open)
+    in_range = f" {allowed}" if allowed else ""
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise SceneError(field, f"must be a number in {allowed} (got {value!r})")
+        raise SceneError(field, f"must be a number{in_range} (got {value!r})")
     v = float(value)
     if not math.isfinite(v):
-        raise SceneError(field, f"must be a finite number in {allowed} (got {value!r})")
+        raise SceneError(field, f"must be a finite number{in_range} (got {value!r})")
     bad = (
         (lo is not None and (v <= lo if lo_open else v < lo))
         or (hi is not None and (v >= hi if hi_open else v > hi))
@@ -51,12 +55,14 @@ def check_real(field: str, value, *, lo=None, hi=None, lo_open=False, hi_open=Fa
 
 
 def check_int(field: str, value, *, lo=None, hi=None) -> int:
+    """Return ``value`` as an int in [lo, hi] (None: unbounded), or raise SceneError."""
     allowed = _describe(lo, hi, False, False)
+    in_range = f" {allowed}" if allowed else ""
     if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        raise SceneError(field, f"must be a whole number {allowed} (got {value!r})")
+        raise SceneError(field, f"must be a whole number{in_range} (got {value!r})")
     v = int(value)
     if (lo is not None and v < lo) or (hi is not None and v > hi):
-        raise SceneError(field, f"must be a whole number {allowed} (got {v})")
+        raise SceneError(field, f"must be a whole number{in_range} (got {v})")
     return v
 
 

@@ -28,11 +28,11 @@ import tomllib
 from pathlib import Path
 
 from . import theory
-from .errors import SceneError
+from .errors import SceneError, check_real
 from .materials import Homogeneous, PowerLawGraded
 from .profiles import Cone, Flat, Paraboloid, Sphere
 from .scene import Adhesion, Indenter, Loading, Outputs, Scene
-from . import shapes as S
+from . import shapes
 
 __all__ = ["load_scene", "scene_from_dict", "shape_from_dict", "summarise", "SHAPE_KEYS"]
 
@@ -71,7 +71,7 @@ def _check_keys(section: str, d: dict, allowed: set, required: set = frozenset()
         raise SceneError(f"{section}.{missing[0]}", f"is required{also}")
 
 
-def shape_from_dict(d: dict, *, base_dir: Path | None = None, section: str = "indenter") -> S.Shape:
+def shape_from_dict(d: dict, *, base_dir: Path | None = None, section: str = "indenter") -> shapes.Shape:
     if not isinstance(d, dict) or "shape" not in d:
         raise SceneError(f"{section}.shape", f"is required; one of: {', '.join(sorted(SHAPE_KEYS))}")
     kind = d["shape"]
@@ -79,15 +79,16 @@ def shape_from_dict(d: dict, *, base_dir: Path | None = None, section: str = "in
         raise SceneError(f"{section}.shape", f"unknown shape {kind!r}; one of: {', '.join(sorted(SHAPE_KEYS))}")
     required, optional = SHAPE_KEYS[kind]
     _check_keys(section, d, required | optional | _COMMON | (_PROFILE_KEYS if section == "indenter" else set()), required)
-    kw = {k: d[k] for k in required | optional if k in d}
-    if "center" in kw:
-        kw["center"] = tuple(kw["center"]) if isinstance(kw["center"], list) else kw["center"]
-    rot = d.get("rotation_deg", 0.0)
+    params = {k: d[k] for k in required | optional if k in d}
+    if "center" in params:
+        params["center"] = tuple(params["center"]) if isinstance(params["center"], list) else params["center"]
+    # shapes with a rotation parameter of their own take it and keep their closed forms; others are wrapped
+    rotation = d.get("rotation_deg", 0.0)
     if kind in _NATIVE_ROTATION and "rotation_deg" in d:
-        kw["rotation_deg"] = rot
-        rot = 0.0
+        params["rotation_deg"] = rotation
+        rotation = 0.0
     try:
-        shape = _build(kind, kw, base_dir, section)
+        shape = _build(kind, params, base_dir, section)
     except TypeError as exc:  # a wrongly typed nested value
         raise SceneError(section, f"invalid parameters for shape {kind!r}: {exc}") from None
     mirror = d.get("mirror", False)
@@ -95,58 +96,57 @@ def shape_from_dict(d: dict, *, base_dir: Path | None = None, section: str = "in
         raise SceneError(f"{section}.mirror", f"must be true or false (got {mirror!r})")
     if mirror:
         shape = shape.mirrored()
-    if rot:
-        from .errors import check_real
-        shape = shape.rotated(check_real(f"{section}.rotation_deg", rot))
+    if rotation:
+        shape = shape.rotated(check_real(f"{section}.rotation_deg", rotation))
     return shape
 
 
-def _build(kind, kw, base_dir, section):
+def _build(kind, params, base_dir, section):
     if kind == "circle":
-        return S.Circle(**kw)
+        return shapes.Circle(**params)
     if kind == "ellipse":
-        return S.Ellipse(**kw)
+        return shapes.Ellipse(**params)
     if kind == "square":
-        return S.Square(**kw)
+        return shapes.Square(**params)
     if kind == "rectangle":
-        return S.Rectangle(**kw)
+        return shapes.Rectangle(**params)
     if kind == "triangle":
-        if ("side" in kw) == ("vertices" in kw):
+        if ("side" in params) == ("vertices" in params):
             raise SceneError(f"{section}.side", "give either side (equilateral) or vertices")
-        if "side" in kw:
-            return S.Triangle.equilateral(kw["side"])
-        return S.Triangle(_vertices(kw["vertices"], section))
+        if "side" in params:
+            return shapes.Triangle.equilateral(params["side"])
+        return shapes.Triangle(_vertices(params["vertices"], section))
     if kind == "regular_polygon":
-        return S.RegularPolygon(**kw)
+        return shapes.RegularPolygon(**params)
     if kind == "star":
-        return S.Star(**kw)
+        return shapes.Star(**params)
     if kind == "polygon":
-        return S.Polygon(_vertices(kw["vertices"], section))
+        return shapes.Polygon(_vertices(params["vertices"], section))
     if kind == "power_law_star":
-        return S.PowerLawStar(**kw)
+        return shapes.PowerLawStar(**params)
     if kind == "two_circles":
-        return S.TwoCircles(**kw)
+        return shapes.TwoCircles(**params)
     if kind == "square_with_faults":
-        return S.SquareWithFaults(**kw)
+        return shapes.SquareWithFaults(**params)
     if kind == "brush":
-        return S.Brush(**kw)
+        return shapes.Brush(**params)
     if kind == "image":
-        p = kw.pop("path")
+        p = params.pop("path")
         if not isinstance(p, str):
             raise SceneError(f"{section}.path", "must be a file name")
         path = Path(p) if base_dir is None or Path(p).is_absolute() else base_dir / p
-        return S.ImageMask(path=str(path), **kw)
+        return shapes.ImageMask(path=str(path), **params)
     if kind == "union":
-        parts = kw["parts"]
+        parts = params["parts"]
         if not isinstance(parts, list) or not parts:
             raise SceneError(f"{section}.parts", "must be a non-empty list of shape tables")
-        return S.Union(tuple(shape_from_dict(p, base_dir=base_dir, section=f"{section}.parts[{i}]") for i, p in enumerate(parts)))
+        return shapes.Union(tuple(shape_from_dict(p, base_dir=base_dir, section=f"{section}.parts[{i}]") for i, p in enumerate(parts)))
     if kind == "difference":
-        cuts = kw["cuts"]
+        cuts = params["cuts"]
         if not isinstance(cuts, list):
             raise SceneError(f"{section}.cuts", "must be a list of shape tables")
-        return S.Difference(
-            shape_from_dict(kw["base"], base_dir=base_dir, section=f"{section}.base"),
+        return shapes.Difference(
+            shape_from_dict(params["base"], base_dir=base_dir, section=f"{section}.base"),
             tuple(shape_from_dict(c, base_dir=base_dir, section=f"{section}.cuts[{i}]") for i, c in enumerate(cuts)),
         )
     raise AssertionError(kind)  # pragma: no cover
@@ -205,28 +205,30 @@ def scene_from_dict(d: dict, *, base_dir: Path | None = None) -> Scene:
     name = d.get("name", "")
     if not isinstance(name, str):
         raise SceneError("name", "must be a string")
-    ind = d["indenter"]
-    shape = shape_from_dict(ind, base_dir=base_dir)
-    indenter = Indenter(shape, _profile_from_dict(ind))
+    indenter_table = d["indenter"]
+    shape = shape_from_dict(indenter_table, base_dir=base_dir)
+    indenter = Indenter(shape, _profile_from_dict(indenter_table))
     material = _material_from_dict(d["material"])
-    a = d["adhesion"]
-    _check_keys("adhesion", a, {"work_of_adhesion", "range", "potential"}, {"work_of_adhesion"})
-    adhesion = Adhesion(a["work_of_adhesion"], a.get("range"), a.get("potential", "exponential"))
-    lo = d.get("loading", {})
-    _check_keys("loading", lo, {"press_approach", "press_force", "turning_points", "pull_limit"})
-    tp = lo.get("turning_points", [])
-    if not isinstance(tp, list):
+    adhesion_table = d["adhesion"]
+    _check_keys("adhesion", adhesion_table, {"work_of_adhesion", "range", "potential"}, {"work_of_adhesion"})
+    adhesion = Adhesion(adhesion_table["work_of_adhesion"], adhesion_table.get("range"),
+                        adhesion_table.get("potential", "exponential"))
+    loading_table = d.get("loading", {})
+    _check_keys("loading", loading_table, {"press_approach", "press_force", "turning_points", "pull_limit"})
+    turning_points = loading_table.get("turning_points", [])
+    if not isinstance(turning_points, list):
         raise SceneError("loading.turning_points", "must be a list of approaches")
-    loading = Loading(lo.get("press_approach"), lo.get("press_force"), tuple(tp), lo.get("pull_limit"))
-    o = d.get("outputs", {})
-    _check_keys("outputs", o, {"curve", "snapshots", "fields"})
+    loading = Loading(loading_table.get("press_approach"), loading_table.get("press_force"), tuple(turning_points),
+                      loading_table.get("pull_limit"))
+    outputs_table = d.get("outputs", {})
+    _check_keys("outputs", outputs_table, {"curve", "snapshots", "fields"})
     for k in ("curve", "fields"):
-        if k in o and not isinstance(o[k], bool):
-            raise SceneError(f"outputs.{k}", f"must be true or false (got {o[k]!r})")
-    snaps = o.get("snapshots", [])
-    if not isinstance(snaps, list):
+        if k in outputs_table and not isinstance(outputs_table[k], bool):
+            raise SceneError(f"outputs.{k}", f"must be true or false (got {outputs_table[k]!r})")
+    snapshots = outputs_table.get("snapshots", [])
+    if not isinstance(snapshots, list):
         raise SceneError("outputs.snapshots", "must be a list of approaches")
-    outputs = Outputs(o.get("curve", True), tuple(snaps), o.get("fields", False))
+    outputs = Outputs(outputs_table.get("curve", True), tuple(snapshots), outputs_table.get("fields", False))
     return Scene(indenter, material, adhesion, loading, outputs, name)
 
 
@@ -268,11 +270,11 @@ def summarise(scene: Scene) -> dict:
         "incircle_center": list(inc.center),
         "work_of_adhesion": w,
     }
-    m = scene.material
+    material = scene.material
     phi = shape.filling_factor
     flat = scene.indenter.profile.is_flat
-    if isinstance(m, Homogeneous):
-        E = m.effective_modulus
+    if isinstance(material, Homogeneous):
+        E = material.effective_modulus
         out["effective_modulus"] = E
         if flat:
             out["stiffness_estimate"] = theory.compact_shape_stiffness(E_star=E, area=shape.nominal_area)
@@ -280,16 +282,16 @@ def summarise(scene: Scene) -> dict:
             out["upper_bound_approach"] = theory.upper_bound_approach(E_star=E, work=w, area=shape.nominal_area, filling_factor=phi)
             out["lower_bound_force"] = theory.lower_bound_force(E_star=E, work=w, incircle_radius=inc.radius)
             out["lower_bound_approach"] = theory.lower_bound_approach(E_star=E, work=w, incircle_radius=inc.radius)
-            if isinstance(shape, S.Circle):
+            if isinstance(shape, shapes.Circle):
                 out["kendall_force"] = theory.kendall_adhesion_force(E_star=E, radius=shape.radius, work=w)
                 out["kendall_approach"] = theory.kendall_critical_approach(E_star=E, radius=shape.radius, work=w)
                 out["kendall_stiffness"] = theory.kendall_stiffness(E_star=E, radius=shape.radius)
         elif isinstance(scene.indenter.profile, (Sphere, Paraboloid)):
             out["jkr_force"] = theory.jkr_pulloff_force(work=w, sphere_radius=scene.indenter.profile.radius)
     else:
-        E0, c0, k = m.surface_modulus, m.reference_depth, m.exponent
+        E0, c0, k = material.surface_modulus, material.reference_depth, material.exponent
         out["exponent"] = k
-        out["poisson_ratio"] = m.poisson_ratio
+        out["poisson_ratio"] = material.poisson_ratio
         if flat:
             a_eq = shape.equivalent_radius
             out["stiffness_estimate"] = theory.graded_stiffness(E0=E0, c0=c0, k=k, radius=a_eq)
@@ -297,7 +299,7 @@ def summarise(scene: Scene) -> dict:
             out["upper_bound_approach"] = theory.graded_critical_approach(E0=E0, c0=c0, k=k, radius=a_eq, work=phi * w)
             out["lower_bound_force"] = theory.graded_adhesion_force(E0=E0, c0=c0, k=k, radius=inc.radius, work=w)
             out["lower_bound_approach"] = theory.graded_critical_approach(E0=E0, c0=c0, k=k, radius=inc.radius, work=w)
-            if isinstance(shape, S.Circle):
+            if isinstance(shape, shapes.Circle):
                 out["graded_force"] = theory.graded_adhesion_force(E0=E0, c0=c0, k=k, radius=shape.radius, work=w)
                 out["graded_approach"] = theory.graded_critical_approach(E0=E0, c0=c0, k=k, radius=shape.radius, work=w)
                 out["graded_stiffness"] = theory.graded_stiffness(E0=E0, c0=c0, k=k, radius=shape.radius)

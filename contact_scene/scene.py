@@ -80,8 +80,8 @@ class Loading:
             object.__setattr__(self, "press_approach", check_real("loading.press_approach", self.press_approach))
         if self.press_force is not None:
             object.__setattr__(self, "press_force", check_real("loading.press_force", self.press_force, lo=0))
-        tps = tuple(check_real("loading.turning_points", t) for t in self.turning_points)
-        object.__setattr__(self, "turning_points", tps)
+        turning_points = tuple(check_real("loading.turning_points", t) for t in self.turning_points)
+        object.__setattr__(self, "turning_points", turning_points)
         if self.pull_limit is not None:
             object.__setattr__(self, "pull_limit", check_real("loading.pull_limit", self.pull_limit, hi=0, hi_open=True))
 

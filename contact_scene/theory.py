@@ -134,8 +134,8 @@ def critical_stress(*, E_star: float, work: float, spacing: float) -> float:
 
 def filling_energy(*, E_star: float, work: float, radius: float, approach: float, filling) -> float:
     """Eq. 25: U = E* a d^2 - 2 pi w int_0^a phi(r) r dr (``filling`` is the callable phi)."""
-    ad, _ = integrate.quad(lambda r: filling(r) * r, 0.0, radius, limit=200)
-    return E_star * radius * approach**2 - 2.0 * math.pi * work * ad
+    adhering_moment, _ = integrate.quad(lambda r: filling(r) * r, 0.0, radius, limit=200)
+    return E_star * radius * approach**2 - 2.0 * math.pi * work * adhering_moment
 
 
 def filling_equilibrium_approach(*, E_star: float, work: float, radius: float, filling_at_radius: float) -> float:
@@ -159,12 +159,12 @@ def filling_is_stable(*, radius: float, filling, step: float | None = None) -> b
     return (radius + h) * filling(radius + h) - (radius - h) * filling(radius - h) > 0
 
 
-def filling_last_stable_radius(*, filling, lo: float, hi: float) -> float:
-    """Eq. 31: the radius where d(a phi(a))/da = 0, bracketed in [lo, hi]."""
-    def g(a):
+def filling_last_stable_radius(*, filling, radius_min: float, radius_max: float) -> float:
+    """Eq. 31: the radius where d(a phi(a))/da = 0, bracketed in [radius_min, radius_max]."""
+    def stability_slope(a):
         h = 1e-7 * a
         return ((a + h) * filling(a + h) - (a - h) * filling(a - h)) / (2 * h)
-    return optimize.brentq(g, lo, hi, xtol=1e-14 * hi)
+    return optimize.brentq(stability_slope, radius_min, radius_max, xtol=1e-14 * radius_max)
 
 
 # ---------------------------------------------------------------------------
