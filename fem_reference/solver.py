@@ -12,7 +12,7 @@ Griffith (G = w, Eqs. 4-6 and 36-40): d_c = -sqrt(4 pi a w / K'(a)), F_A = K(a) 
 
 Error estimate: the unit problem is solved again one polynomial degree lower on the same mesh;
 the change, scaled by the measured per-degree error ratio, plus the domain truncation, bounds
-the relative errors of K, F_A and d_c (:func:`error_estimates`; ``Result.info["error_estimates"]``,
+the relative errors of K, F_A and d_c (:func:`error_estimates`; ``Result.error_bars``,
 ``accuracy_estimate`` their largest).
 """
 from __future__ import annotations
@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 from skfem import MeshTri
 
-from contact_scene import Circle, Curve, Homogeneous, PowerLawGraded, Result, Scene, SceneError
+from contact_scene import Circle, Curve, ErrorBar, Homogeneous, PowerLawGraded, Result, Scene, SceneError, SolverStats
 from contact_scene.errors import check_int, check_real
 
 from .model import Material, assemble, build_mesh, build_tensor_mesh, saddle_matrix, solve_unit_approach
@@ -240,7 +240,7 @@ def error_estimates(u: UnitSolution, mat: Material, settings: FemSettings) -> tu
 
 
 def _material(scene: Scene) -> tuple[Material, float]:
-    """Dimensionless material and the modulus scale S with K = S a K^."""
+    """Dimensionless material and the modulus scale with K = scale a K^."""
     m = scene.material
     a = scene.indenter.shape.radius
     if isinstance(m, Homogeneous):
@@ -269,12 +269,12 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
     if why:
         raise SceneError("indenter.shape" if "circular" in why else "material.exponent", why)
     settings = settings or FemSettings()
-    mat, S = _material(scene)
+    mat, modulus_scale = _material(scene)
     a = scene.indenter.shape.radius
     w = scene.adhesion.work_of_adhesion
     u = unit_solution(mat, settings)
-    K = S * a * u.stiffness
-    dK = S * u.dK_vce                      # d(S a K^(a))/da with K^ computed at a = 1 (scale-free)
+    K = modulus_scale * a * u.stiffness
+    dK = modulus_scale * u.dK_vce                      # d(S a K^(a))/da with K^ computed at a = 1 (scale-free)
     if w > 0:
         d_c = -math.sqrt(4 * math.pi * a * w / dK)
     else:
@@ -292,7 +292,7 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
     if scene.outputs.fields:
         if not settings.fields_path:
             raise SceneError("fem.fields_path", "the scene asks for fields: give FemSettings(fields_path=...) (.vtu or .xdmf)")
-        write_fields(settings.fields_path, u, radius=a, approach=d_c, modulus_scale=S)
+        write_fields(settings.fields_path, u, radius=a, approach=d_c, modulus_scale=modulus_scale)
     curve = Curve(np.array([0.0, d_c, d_c]), np.array([0.0, -F_A, 0.0]), np.array([math.pi * a * a] * 2 + [0.0]))
     if callback is not None:
         callback(d_c, -F_A, math.pi * a * a)
@@ -311,10 +311,17 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
         timings=timings,
         accuracy_estimate=max(est.values()),
         messages=tuple(msgs),
-        info={"dofs": u.dofs, "elements": u.elements, "dK_da_vce": S * u.dK_vce, "dK_da_compliance": None if u.dK_compliance is None else S * u.dK_compliance,
-              "stiffness_reaction": S * a * u.stiffness_reaction, "grading": settings.grading, "order": settings.order,
+        error_bars={q: ErrorBar(v, f"degree {settings.order} against {comparison_order(settings.order)} on the same mesh, "
+                                   f"scaled by the per-degree ratio, plus the truncation 1/{settings.domain_radius:g} "
+                                   "(bounds the error on every tested case: tests/test_fem_reference.py)")
+                    for q, v in est.items()},
+        stats=SolverStats(linear_solves=2 + (u.dK_compliance is not None) * 2, unknowns=int(u.dofs)),
+        face_area=None,
+        discretisation="mesh",
+        info={"dofs": u.dofs, "elements": u.elements, "dK_da_vce": modulus_scale * u.dK_vce, "dK_da_compliance": None if u.dK_compliance is None else modulus_scale * u.dK_compliance,
+              "stiffness_reaction": modulus_scale * a * u.stiffness_reaction, "grading": settings.grading, "order": settings.order,
               "error_estimates": est, "comparison_order": comparison_order(settings.order),
-              "comparison_stiffness": S * a * comparison.stiffness, "comparison_dK_da": S * comparison.dK_vce,
+              "comparison_stiffness": modulus_scale * a * comparison.stiffness, "comparison_dK_da": modulus_scale * comparison.dK_vce,
               # continuum identities the discrete solution misses: K ~ a^(1+k) (so a K'/((1+k) K) = 1)
               # and the reaction equals the energy form; diagnostics, not error bounds
               "scaling_defect": abs(u.dK_vce / ((1 + mat.k) * u.stiffness) - 1),
