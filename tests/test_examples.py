@@ -266,3 +266,38 @@ def test_fig06_complicated_shapes_start_at_corners_and_end_near_the_incircle_app
         assert out["first_lost_to_corner"] <= 2.0
         assert 1.0 <= d <= 1.3 and F >= 1.0                           # Eq. 18 is a lower bound
         assert out["result"].converged and out["result"].detached
+
+
+def test_every_example_is_a_gallery_page_with_a_title_and_a_short_version():
+    """The documentation's gallery (sphinx-gallery, docs/conf.py) needs each public script's
+    docstring to open with a reStructuredText title, and runs the script's short version when
+    ADHESIVE_PUNCH_EXAMPLES=short; the private helpers are not pages."""
+    import ast
+    from pathlib import Path
+
+    scripts = sorted(p for p in (Path(__file__).resolve().parents[1] / "examples").glob("*.py")
+                     if not p.name.startswith("_"))
+    assert len(scripts) >= 11
+    for path in scripts:
+        source = path.read_text()
+        doc = ast.get_docstring(ast.parse(source), clean=False)
+        assert doc is not None, path.name
+        title, underline, *_ = doc.strip("\n").splitlines()
+        assert title.strip() and set(underline) == {"="} and len(underline) >= len(title), path.name
+        assert "_gallery.short_run()" in source.split('if __name__ == "__main__":')[1], path.name
+
+
+def test_the_gallery_switch_takes_full_or_short_and_refuses_anything_else(monkeypatch):
+    import pytest
+
+    from examples import _gallery
+
+    monkeypatch.delenv("ADHESIVE_PUNCH_EXAMPLES", raising=False)
+    assert not _gallery.short_run()                                  # a script runs its full version
+    monkeypatch.setenv("ADHESIVE_PUNCH_EXAMPLES", "short")
+    assert _gallery.short_run()
+    monkeypatch.setenv("ADHESIVE_PUNCH_EXAMPLES", "quick")
+    with pytest.raises(ValueError, match="ADHESIVE_PUNCH_EXAMPLES must be one of full, short"):
+        _gallery.short_run()
+    monkeypatch.setenv("ADHESIVE_PUNCH_PICTURES", "/tmp/pictures")
+    assert str(_gallery.picture_path("fig04_convex_shapes")) == "/tmp/pictures/fig04_convex_shapes.png"
