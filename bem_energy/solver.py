@@ -25,6 +25,7 @@ from .potentials import PROCESS_ZONE_ELEMENTS, Potential
 from .problem import build_problem
 from .resolution import (DEFAULT_ELEMENTS_PER_RADIUS, MAX_DEFAULT_SIDE, critical_approach_scale, default_potential,
                          finite_range_grid, unresolved_process_zone)
+from .error_model import error_bars
 from .settings import EnergySettings
 
 __all__ = ["pull_off", "EnergyInfo", "default_potential", "unresolved_process_zone", "finite_range_grid",
@@ -136,4 +137,5 @@ def pull_off(scene: Scene, settings: EnergySettings, *, spacing: float | None = 
         stats=eq.work.solver_stats(events=outcome.steps, unknowns=face_elements),
         face_area=face_elements * prob.cell,
         discretisation="grid",
+        error_bars=error_bars(scene, spacing=prob.spacing, face_area=face_elements * prob.cell),
     )

@@ -20,6 +20,7 @@ import numpy as np
 from contact_scene import Circle, Grid, Result, Scene, SolverStats, rasterise, theory
 
 from .potentials import Potential, process_zone_exponent, process_zone_modulus, range_for_process_zone
+from .error_model import error_bars
 from .settings import ZeroRangeSettings
 from .solver import EnergyInfo, pull_off
 
@@ -249,4 +250,8 @@ def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callb
         # forces scaled to the nominal area refer to the exact face; raw ones to the finest grid's
         face_area=None if settings.normalise_area else finest.face_area,
         discretisation="extrapolated",
+        # the finest grid's stiffness bar, and the extrapolation's estimate for the force (a
+        # failed or unvalidated extrapolation has no bar: its force is not checked)
+        error_bars=error_bars(scene, spacing=finest.grid_spacing, face_area=finest.face_area,
+                              zero_range_estimate=float(est / F0) if ok and math.isfinite(est) and F0 > 0 else None),
     )
