@@ -7,7 +7,7 @@ import pytest
 
 import bem_griffith as bg
 import contact_scene as cs
-from bem_griffith.criterion import CIRCLE_FIRST_ORDER, CIRCLE_RATIO, calibration, interpolate
+from bem_griffith.criterion import CIRCLE_FIRST_ORDER, calibration
 from halfspace.kernel import graded_square_integral, love_square_integral
 from contact_scene import theory as T
 from square_quadrature import square_integral_reference
@@ -52,6 +52,23 @@ def _circle(k):
     return cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, k), cs.Adhesion(1.0))
 
 
+#: resolutions between the calibration sweep's 32, 45, 64 (off its points)
+OFF_SWEEP = (40, 56)
+
+
+@pytest.fixture(scope="module")
+def homogeneous_circle():
+    """The k = 0 circle (Eq. 22, validated on Kendall's circle) on the grids the calibrated
+    circles are compared on: the calibration's reference."""
+    return {N: bg.solve(_circle(0.0), bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N))) for N in OFF_SWEEP}
+
+
+def _scaled_to_eq39(res, k):
+    """F_A / F_A(Eq. 39), the force scaled to the nominal area (F ~ A^((3+k)/4)) as in the fit."""
+    return T.force_at_nominal_area(res.pulloff_force, area=res.face_area, nominal_area=np.pi, k=k) / (
+        T.graded_adhesion_force(E0=1.0, c0=1.0, k=k, radius=1.0, work=1.0))
+
+
 @pytest.mark.parametrize("k", [-0.95, -0.5, 0.5, 0.95])
 def test_calibration_only_rescales(k):
     """A flat punch pulled from touching is linear between events with thresholds ~ sigma_c:
@@ -67,7 +84,7 @@ def test_calibration_only_rescales(k):
 
 
 @pytest.mark.parametrize("k", [-0.75, -0.25, 0.25, 0.75])
-def test_calibrated_circle_follows_the_homogeneous_one(k):
+def test_calibrated_circle_follows_the_homogeneous_one(k, homogeneous_circle):
     """On the same grid, the calibrated graded circle's F_A / F_A(Eq. 39) equals the
     homogeneous circle's F_A / F_Kendall up to the calibration's first-order term (|c| / r
     <= 0.44 / N fitted over 32-181 per radius; 0.5 / N allowed) and its uncertainty u, at
@@ -75,10 +92,10 @@ def test_calibrated_circle_follows_the_homogeneous_one(k):
     k = -0.75).  The homogeneous circle's own error is Kendall's test.  Eq. 42's constant
     alone misses by 7-43 % here."""
     r, u = calibration(k)
-    for N in (40, 56):
+    for N in OFF_SWEEP:
         st = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N))
         g = bg.solve(_circle(k), st)
-        h = bg.solve(_circle(0.0), st)
+        h = homogeneous_circle[N]
         ratio = (g.pulloff_force / T.graded_adhesion_force(E0=1.0, c0=1.0, k=k, radius=1.0, work=1.0)) / (
             h.pulloff_force / T.graded_adhesion_force(E0=1.0, c0=1.0, k=0.0, radius=1.0, work=1.0))
         assert abs(ratio - 1) <= 0.5 / N + u / r
@@ -88,28 +105,42 @@ def test_calibrated_circle_follows_the_homogeneous_one(k):
         assert abs(d_ratio - 1) <= 0.5 / N + u / r + 0.3 / N
 
 
-@pytest.mark.parametrize("k", [-0.9, 0.9])
-def test_calibrated_circle_follows_the_fitted_first_order_approach(k):
-    """Beyond |k| = 0.75 (where the kernel r^-(1+k) is nearly flat, k = -0.9, or nearly
-    r^-2, k = 0.9): on grids not in the sweep, the calibrated circle's pull-off relative to
+def _first_order(k):
+    """c / r at k, linear between the bracketing exponents of ``CIRCLE_FIRST_ORDER``, and
+    the spread of the two (the uncertainty of that interpolation)."""
+    ks = sorted(CIRCLE_FIRST_ORDER)
+    below = max(x for x in ks if x <= k)
+    above = min(x for x in ks if x >= k)
+    if below == above:
+        return CIRCLE_FIRST_ORDER[k], 0.0
+    t = (k - below) / (above - below)
+    c_below, c_above = CIRCLE_FIRST_ORDER[below], CIRCLE_FIRST_ORDER[above]
+    return c_below + t * (c_above - c_below), abs(c_above - c_below)
+
+
+@pytest.mark.parametrize("k,N", [(-0.95, 56), (-0.925, 56), (-0.9, 40), (-0.9, 56),
+                                 (0.9, 40), (0.9, 56), (0.925, 40), (0.925, 56), (0.95, 40), (0.95, 56)])
+def test_calibrated_circle_follows_the_fitted_first_order_approach(k, N, homogeneous_circle):
+    """Beyond |k| = 0.75 (where the kernel r^-(1+k) is nearly flat, k -> -1, or nearly
+    r^-2, k -> 1): on grids not in the sweep, the calibrated circle's pull-off relative to
     Eq. 39 over the homogeneous circle's relative to Kendall (both scaled to the nominal area,
-    as in the fit) is 1 + (c / r) / N within the calibration's uncertainty u / r.  The two
-    solves are independent of the sweep's; a wrong r, or a c/N fit that does not describe
-    the grids between its points, fails.  (Eq. 42's constant alone misses by 64 % at
-    k = -0.9.)"""
+    as in the fit) is 1 + (c / r) / N within the calibration's uncertainty u / r.  Fresh
+    solves, independent of the sweep's: they re-measure the table's ends (k = +-0.95, where
+    the interpolation must return the entry itself) and, at k = +-0.925, the interpolated
+    r(k) between entries (the interpolated c / r adds the spread of its two neighbours / N).
+    A wrong entry, a wrong interpolation, or a c/N fit that does not describe the grids
+    between its points fails: r(-0.95) 1 % high, r(0.95) 0.5 % high, or r interpolated
+    linearly instead of through s = r / sqrt(1 + k) (1.5 % low at k = -0.925) is caught.
+    The negative ends run at 56 per radius, where the ratio sits near the fit (at 40 it
+    sits 0.6 % above it, so a 1 % low force would pass there).  (Eq. 42's constant
+    alone misses by 64 % at k = -0.9.)"""
     r, u = calibration(k)
-    for N in (40, 56):
-        st = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N))
-        g, h = bg.solve(_circle(k), st), bg.solve(_circle(0.0), st)
-        assert g.converged and h.converged
-
-        def scaled(res, kk):
-            area = res.info["face_elements"] * res.grid_spacing**2
-            return T.force_at_nominal_area(res.pulloff_force, area=area, nominal_area=np.pi, k=kk) / (
-                T.graded_adhesion_force(E0=1.0, c0=1.0, k=kk, radius=1.0, work=1.0))
-
-        ratio = scaled(g, k) / scaled(h, 0.0)
-        assert abs(ratio - (1 + CIRCLE_FIRST_ORDER[k] / N)) <= u / r, (N, ratio)
+    first, spread = _first_order(k)
+    g = bg.solve(_circle(k), bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)))
+    h = homogeneous_circle[N]
+    assert g.converged and h.converged
+    ratio = _scaled_to_eq39(g, k) / _scaled_to_eq39(h, 0.0)
+    assert abs(ratio - (1 + first / N)) <= u / r + spread / N, (N, ratio)
 
 
 def test_calibration_refuses_outside_its_range():
@@ -124,20 +155,3 @@ def test_calibration_refuses_outside_its_range():
         assert bg.solve(_circle(k), dataclasses.replace(st, graded_criterion="eq42")).pulloff_force > 0
         press = bg.press(cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, k), cs.Adhesion(0.0)), st)
         assert press.stiffness > 0
-    for k in (-0.95, 0.95):
-        assert calibration(k) == pytest.approx(CIRCLE_RATIO[k], rel=1e-12)
-
-
-def test_interpolation_predicts_each_measured_exponent_from_the_others():
-    """Each measured r(k), k = 0 included (Eq. 22, validated on Kendall's circle, r = 1 with
-    no fit), predicted by the interpolant through the other entries, i.e. across a gap twice
-    the table's: within the two uncertainties.  Checks that the entries lie on one smooth
-    curve (k -> 0 continuity among them) and that the interpolation follows r's square-root
-    end at k = -1 (a monotone cubic in r itself misses k = -0.9 by 4.2 %, k = 0.5 by 1.6 %)."""
-    ks = np.array(sorted(CIRCLE_RATIO))
-    r = np.array([CIRCLE_RATIO[x][0] for x in ks])
-    u = np.array([CIRCLE_RATIO[x][1] for x in ks])
-    for i in range(1, len(ks) - 1):
-        keep = np.arange(len(ks)) != i
-        r_pred, u_pred = interpolate(ks[keep], r[keep], u[keep], ks[i])
-        assert abs(r_pred - r[i]) <= u[i] + u_pred, (ks[i], r_pred, r[i])
