@@ -44,16 +44,36 @@ def test_analytic_areas_and_incircles():
     assert SHAPES["triangle"].area == pytest.approx(math.sqrt(3) / 4)
     assert SHAPES["triangle"].incircle().radius == pytest.approx(1 / (2 * math.sqrt(3)))
     assert SHAPES["hexagon"].area == pytest.approx(3 * math.sqrt(3) / 2)
-    assert SHAPES["square"].incircle().radius == 1.0
     # star: n rays of two triangles (centre, tip, inner vertex)
     n, R, r = 5, 1.0, 0.45
     assert SHAPES["star"].area == pytest.approx(n * R * r * math.sin(math.pi / n))
-    b = SHAPES["brush"]
-    assert b.filling_factor == pytest.approx(len(b.parts) * math.pi * 0.06**2)
     f = SHAPES["faults"]
     assert f.area_is_exact and f.area == pytest.approx(1.0 - 0.5 * 0.2 * 0.3 - 2 * 0.4 * 0.02)
     tc = SHAPES["two_circles"]                                # lens area against a fine raster
     assert cs.Union(tc.parts).area == pytest.approx(tc.area, rel=2e-3)
+
+
+@pytest.mark.parametrize("name", ["square", "rectangle", "hexagon"])
+def test_closed_form_incircles_match_the_polygon_linear_programme(name):
+    """The regular polygons' closed-form incircles against the general polygon's Chebyshev
+    centre (a linear programme over the edges), on the same vertices."""
+    s = SHAPES[name]
+    r, c = s.incircle()
+    r_lp, c_lp = cs.Polygon(tuple(map(tuple, s.vertices))).incircle()
+    assert r == pytest.approx(r_lp, rel=1e-9)
+    if name != "rectangle":                                   # a rectangle's incircle slides along its length
+        assert c == pytest.approx(c_lp, abs=1e-9 * s.size)
+
+
+def test_regular_brush_counts_its_pillars_and_its_filling_factor():
+    """side 1, pitch 0.2, radius 0.06: the centres -0.4 ... 0.4 fit 5 x 5 pillars (a sixth
+    column would need 5 x 0.2 + 2 x 0.06 = 1.12 > 1), centred on the square, so phi = 25 pi 0.06^2
+    (Eq. 24)."""
+    b = SHAPES["brush"]
+    assert len(b.parts) == 25
+    assert b.filling_factor == pytest.approx(25 * math.pi * 0.06**2, rel=1e-12)
+    xs = sorted({p.center[0] for p in b.parts})
+    assert xs == pytest.approx([-0.4, -0.2, 0.0, 0.2, 0.4], abs=1e-12)
 
 
 @pytest.mark.parametrize("name", sorted(SHAPES))
@@ -174,3 +194,38 @@ def test_mixed_brush_has_circular_and_square_columns_and_an_exact_area():
     assert cs.Brush(1.0, 0.07, layout="mixed", count=30, seed=1) == b
     with pytest.raises(cs.SceneError, match="indenter.layout"):
         cs.Brush(1.0, 0.07, layout="spiral")
+
+
+@pytest.mark.parametrize("build,field,says", [
+    (lambda: cs.Circle(0.0), "indenter.radius", r"must be > 0 \(got 0\)"),
+    (lambda: cs.Ellipse(1.0, 2.0), "indenter.semi_minor", r"must be in \(0, 1\] \(got 2\)"),
+    (lambda: cs.Star(5, 1.0, 1.5), "indenter.inner_radius", r"must be in \(0, 1\]"),
+    (lambda: cs.PowerLawStar(8, 0.5, 0.5), "indenter.outer_radius", r"must be > 0.5"),
+    (lambda: cs.RegularPolygon(3.5, 1.0), "indenter.n_sides", r"whole number in \[3, 100000\]"),
+    (lambda: cs.Square(1.0, center=(0.0,)), "indenter.center", "pair of numbers"),
+    (lambda: cs.Rectangle(1.0, 2.0, rotation_deg=float("inf")), "indenter.rotation_deg", "finite number"),
+    (lambda: cs.SquareWithFaults(2.0, v_cut_depth=2.0), "indenter.v_cut_depth", r"must be in \[0, 2\)"),
+    (lambda: cs.SquareWithFaults(1.0, line_cuts=2, line_cut_length=0.5, cut_width=0.3), "indenter.cut_width",
+     r"must be in \[0, 0.2\]"),
+    (lambda: cs.Brush(1.0, 0.1, pitch=0.2), "indenter.pitch", r"must be > 0.2"),
+    (lambda: cs.Brush(1.0, 0.1, layout="spiral"), "indenter.layout", "'regular'"),
+    (lambda: cs.Brush(1.0, 0.1, layout="random", count=0), "indenter.count", r"\[1, 100000\]"),
+    (lambda: cs.TwoCircles(1.0, 1.0, -0.5), "indenter.distance", r"must be >= 0"),
+    (lambda: cs.ImageMask(path="face.png", pixel_size=1.0, threshold=1.5), "indenter.threshold", r"in \[0, 1\]"),
+    (lambda: cs.Circle(1.0).scaled(0.0), "scale", r"must be > 0"),
+], ids=lambda v: v if isinstance(v, str) and "." in v else None)
+def test_a_parameter_outside_its_range_is_refused_by_name(build, field, says):
+    """Each declared range, including ranges set by another parameter (semi_minor <= semi_major,
+    cut_width <= side / (2 line_cuts + 1)), names the field and the allowed values."""
+    with pytest.raises(cs.SceneError, match=says) as exc:
+        build()
+    assert exc.value.field == field
+
+
+def test_checked_parameters_are_stored_checked_and_conditional_ones_only_where_they_apply():
+    # stored as floats (a scene's repr is the result cache's key: 1 and 1.0 must give one key)
+    assert repr(cs.Circle(1, [0, 1])) == "Circle(radius=1.0, center=(0.0, 1.0))"
+    assert repr(cs.TwoCircles(1, 1, 1)) == "TwoCircles(radius1=1.0, radius2=1.0, distance=1.0)"
+    # a random brush has no lattice pitch, a regular one no count or seed
+    assert len(cs.Brush(1.0, 0.05, layout="random", count=3, pitch=0.0).parts) == 3
+    assert len(cs.Brush(1.0, 0.05, count=-1, seed=-1).parts) == 25
