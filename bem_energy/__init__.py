@@ -8,12 +8,12 @@ from .minimisers import Minimum, minimise
 from .potentials import Potential, process_zone_length
 from .problem import EnergyProblem, build_problem
 from .settings import EnergySettings, ZeroRangeSettings
-from .solver import finite_range_grid, pull_off
-from .zero_range import richardson, zero_range
+from .solver import EnergyInfo, finite_range_grid, pull_off
+from .zero_range import ZeroRangeInfo, richardson, zero_range
 
 __all__ = ["solve", "solve_with_resolution", "pull_off", "finite_range_grid", "zero_range", "richardson",
            "EnergySettings", "ZeroRangeSettings", "Potential", "process_zone_length", "EnergyProblem", "build_problem",
-           "Minimum", "minimise"]
+           "Minimum", "minimise", "EnergyInfo", "ZeroRangeInfo"]
 
 
 def solve(scene: Scene, settings: EnergySettings | ZeroRangeSettings | None = None, *, callback=None) -> Result:

@@ -118,10 +118,11 @@ def pull(eq: Equilibria, scene: Scene, path: LoadingPath, d0: float, m0: Minimum
                 d_next = between[0]
             # warm start: extrapolate along the branch (secant), then the minimiser projects
             U0 = m.U if U_prev is None else m.U + (m.U - U_prev) * ((d_next - d) / (d - d_prev))
-            m_new = eq.minimum(U0, d_next, adhesive)
+            m_new = eq.pulling_trial(U0, d_next, adhesive) if attached and sign < 0 else eq.minimum(U0, d_next, adhesive)
             now = eq.attached(m_new, d_next, adhesive)
             if attached and not now and sign < 0:
-                snap = locate_snap_off(eq, path, d, m, d_next, m_new, adhesive, tolerance=snap_tolerance)
+                snap = locate_snap_off(eq, path, d, m, d_next, m_new, adhesive, tolerance=snap_tolerance,
+                                       locate_detachment=eq.settings.locate_detachment)
                 out.snap_off = snap
                 d_next, m_new = snap.detached_approach, snap.detached_state
             for s in wanted:

@@ -32,6 +32,7 @@ class WorkCount:
     iterations: int = 0
     evaluations: int = 0
     unconverged: int = 0
+    peeled: int = 0
     worst_gradient: float = 0.0
     failures: list[str] = field(default_factory=list)
 
@@ -39,6 +40,9 @@ class WorkCount:
         self.minimisations += 1
         self.iterations += m.iterations
         self.evaluations += m.evaluations
+        if m.peeled:
+            self.peeled += 1          # stopped on purpose: the state is known to be detaching
+            return
         self.worst_gradient = max(self.worst_gradient, m.gradient)
         if not m.converged:
             self.unconverged += 1
@@ -58,15 +62,28 @@ class WorkCount:
                            unconverged=self.unconverged, unknowns=unknowns)
 
 
+#: the least fall of the contact (a fraction of its most) that marks a trial as peeling off
+PEEL_FRACTION_MIN = 0.1
+
+#: the fall of the contact, in units of l_c / a, that marks a trial as peeling off: an attached
+#: step near the maximum opens an edge zone of width about l_c, i.e. loses about 2 l_c / a of
+#: a circle's contact, five times less than this
+PEEL_FRACTION_PER_PROCESS_ZONE = 10.0
+
+
 class Equilibria:
     """Minimisations of one problem with one settings object, counted in :attr:`work`.
 
-    ``adhesive`` says whether the potential is on (the press runs without it)."""
+    ``adhesive`` says whether the potential is on (the press runs without it); ``face_radius``
+    (sqrt(A/pi)) sets the scale against which the process zone is small."""
 
-    def __init__(self, prob: EnergyProblem, settings: EnergySettings):
+    def __init__(self, prob: EnergyProblem, settings: EnergySettings, face_radius: float):
         self.prob = prob
         self.settings = settings
         self.work = WorkCount()
+        self.peel_fraction = None
+        if settings.stop_peeling_trials and settings.minimiser == "pk" and prob.potential is not None:
+            self.peel_fraction = max(PEEL_FRACTION_MIN, PEEL_FRACTION_PER_PROCESS_ZONE * prob.process_zone / face_radius)
 
     def minimum(self, U0: np.ndarray, d: float, adhesive: bool) -> Minimum:
         """The equilibrium at approach ``d`` reached from the warm start ``U0``."""
@@ -75,6 +92,27 @@ class Equilibria:
                      max_iterations=s.max_iterations, memory=s.memory)
         self.work.add(m, d)
         return m
+
+    def pulling_trial(self, U0: np.ndarray, d: float, adhesive: bool) -> Minimum:
+        """The equilibrium at ``d`` reached from an attached warm start while pulling, where
+        the state may detach.  A detaching minimisation peels the face about one ring of
+        cells per iteration after a long creep, so it is stopped once its contact has fallen
+        below (1 - s) of its most, s = max(0.1, 10 l_c / a), and the detached state is
+        converged from U = 0 instead (a cold start falls onto the detached branch).  Should
+        that start end attached, the trial is re-run in full from ``U0``, so that the path is
+        that of the full minimisation either way."""
+        if self.peel_fraction is None or not adhesive:
+            return self.minimum(U0, d, adhesive)
+        s = self.settings
+        m = minimise(self.prob, U0, d, adhesive, method=s.minimiser, gtol=s.gtol,
+                     max_iterations=s.max_iterations, memory=s.memory, peel_fraction=self.peel_fraction)
+        self.work.add(m, d)
+        if not m.peeled:
+            return m
+        cold = self.minimum(np.zeros_like(U0), d, adhesive)
+        if not self.attached(cold, d, adhesive):
+            return cold
+        return self.minimum(U0, d, adhesive)
 
     def force(self, m: Minimum) -> float:
         return self.prob.force(m.P)

@@ -8,6 +8,7 @@ range rho with adhesion, else |d|), must fall below ``gtol``.
 from __future__ import annotations
 
 import logging
+import math
 import warnings
 import weakref
 from dataclasses import dataclass
@@ -43,6 +44,7 @@ class Minimum:
     converged: bool
     gradient: float          # scaled projected-gradient norm reached
     message: str = ""
+    peeled: bool = False     # stopped because the contact fell (``peel_fraction``): detaching
 
 
 def _length_scale(prob: EnergyProblem, d: float, adhesive: bool) -> float:
@@ -70,7 +72,12 @@ def projected_gradient(prob: EnergyProblem, U: np.ndarray, G: np.ndarray, d: flo
 
 
 def minimise(prob: EnergyProblem, U0: np.ndarray, d: float, adhesive: bool, *, method: str = "lbfgsb",
-             gtol: float = 1e-6, max_iterations: int = 50_000, memory: int = 10) -> Minimum:
+             gtol: float = 1e-6, max_iterations: int = 50_000, memory: int = 10,
+             peel_fraction: float | None = None) -> Minimum:
+    """The constrained minimum from the warm start ``U0``.  ``peel_fraction`` s (projected CG
+    only): stop, not converged and ``peeled``, once the face cells at the wall have fallen
+    below (1 - s) of the most this minimisation had, i.e. the state is peeling off toward the
+    detached branch (see :meth:`bem_energy.equilibria.Equilibria.pulling_trial`)."""
     # the vector work (L-BFGS-B's updates, the dot products here) goes through BLAS; threaded
     # BLAS on these vector sizes was measured 4x (L-BFGS-B) to 20x (dot products) slower on
     # this shared 2-core machine, so every minimisation runs with one BLAS thread
@@ -78,7 +85,7 @@ def minimise(prob: EnergyProblem, U0: np.ndarray, d: float, adhesive: bool, *, m
         if method == "lbfgsb":
             return _lbfgsb(prob, U0, d, adhesive, gtol, max_iterations, memory)
         if method == "pk":
-            return _projected_cg(prob, U0, d, adhesive, gtol, max_iterations)
+            return _projected_cg(prob, U0, d, adhesive, gtol, max_iterations, peel_fraction)
         if method == "cvxpy":
             return _cvxpy(prob, U0, d, adhesive, gtol, max_iterations)
     raise ValueError(f"unknown minimiser {method!r}")
@@ -120,7 +127,7 @@ def _lbfgsb(prob, U0, d, adhesive, gtol, max_iterations, memory) -> Minimum:
 # Polonsky-Keer / Rey style projected conjugate gradients
 # ---------------------------------------------------------------------------
 
-def _projected_cg(prob, U0, d, adhesive, gtol, max_iterations) -> Minimum:
+def _projected_cg(prob, U0, d, adhesive, gtol, max_iterations, peel_fraction=None) -> Minimum:
     """Conjugate directions on the free set, preconditioned by C itself (which inverts the
     elastic Hessian C^-1 exactly away from the wall), step from the local quadratic model,
     projection onto the wall, restart whenever the set at the wall changes (as in
@@ -138,15 +145,22 @@ def _projected_cg(prob, U0, d, adhesive, gtol, max_iterations) -> Minimum:
     fixed_previous = None
     evals = 1
     potential = prob.potential if adhesive else None
+    most_in_contact = 0
     for it in range(1, max_iterations + 1):
         at_wall = np.zeros(prob.padded, bool)
-        at_wall[face] = U[face] <= wall + 1e-13 * L
+        at_wall_face = U[face] <= wall + 1e-13 * L
+        at_wall[face] = at_wall_face
+        if peel_fraction is not None:
+            in_contact = int(np.count_nonzero(at_wall_face))
+            most_in_contact = max(most_in_contact, in_contact)
+            if in_contact < (1.0 - peel_fraction) * most_in_contact:
+                return Minimum(U, P, E, it - 1, evals, False, math.inf, "peeling off", peeled=True)
         fixed = at_wall & (G > 0)
         Gf = np.where(fixed, 0.0, G)
         pg = float(np.max(np.abs(Gf))) * prob.self_compliance / (prob.cell * L)
         if pg <= gtol:
             return Minimum(U, P, E, it - 1, evals, True, pg)
-        preconditioned = prob.displacement(Gf)
+        preconditioned = prob.preconditioned(Gf)
         preconditioned[fixed] = 0.0
         zg = float(np.vdot(preconditioned, Gf))
         if direction is not None and np.array_equal(fixed, fixed_previous) and zg_previous > 0:

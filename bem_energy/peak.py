@@ -71,15 +71,19 @@ def fold_vertex(points) -> tuple[float, float] | None:
 
 
 def locate_snap_off(eq: Equilibria, path: "LoadingPath", d_att: float, m_att: Minimum, d_det: float,
-                    m_det: Minimum, adhesive: bool, *, tolerance: float) -> SnapOff:
+                    m_det: Minimum, adhesive: bool, *, tolerance: float, locate_detachment: bool = True) -> SnapOff:
     """Bisect between the attached state at ``d_att`` and the detached one at ``d_det`` until
     they are ``tolerance`` apart, every trial starting from the last attached state (a trial
-    started from a detached one stays detached); attached trials join the loading path."""
+    started from a detached one stays detached); attached trials join the loading path.
+    Without ``locate_detachment`` the bisection stops as soon as attached states on the path
+    bracket a smooth maximum of the tension, which then no longer depends on the snap-off."""
     fold_points = [(path.approach[-2], path.force[-2])] if len(path) > 1 else []
     fold_points.append((d_att, eq.force(m_att)))
     while d_att - d_det > tolerance:
+        if not locate_detachment and path.largest.after is not None and path.largest.after[1]:
+            break
         d_mid = 0.5 * (d_att + d_det)
-        m_mid = eq.minimum(m_att.U, d_mid, adhesive)
+        m_mid = eq.pulling_trial(m_att.U, d_mid, adhesive)
         if eq.attached(m_mid, d_mid, adhesive):
             d_att, m_att = d_mid, m_mid
             path.record(d_mid, m_mid)

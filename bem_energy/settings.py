@@ -45,6 +45,17 @@ class EnergySettings:
         1e-3 against 1e-4 took the 256 x 256 circle from 27 s to 18 s for a change of 4e-8
         in F_A (a smooth maximum, refined by Brent) and moved the suite's fold-limited
         cases by at most 3e-4 (benchmarks/bench_energy.py, crossval regress).
+    locate_detachment
+        Bisect the snap-off to ``snap_tolerance`` even once the recorded attached states
+        bracket a smooth force maximum, for the detachment approach and the last stable state.
+        False: stop there (the detachment approach is then known to the bracket's width only);
+        the force maximum is refined by Brent either way, and a fold is still bisected.
+    stop_peeling_trials
+        Stop a pulling step whose contact falls below (1 - s) of its most during the
+        minimisation, s = max(0.1, 10 l_c / a), and converge its detached state from U = 0
+        (projected CG only; see ``Equilibria.pulling_trial``): a detaching minimisation
+        otherwise creeps for about a hundred iterations and then peels one ring of cells per
+        iteration.
     gtol
         Stop when the projected gradient of the scaled energy is below this (scaled so that
         the adhesive stress and the elastic stiffness of one element are of order one).
@@ -59,17 +70,29 @@ class EnergySettings:
     memory: int = 10
     max_face_elements_cvxpy: int = 700
     kernel: str = "collocation"
+    locate_detachment: bool = True
+    stop_peeling_trials: bool = True
 
     def __post_init__(self):
         if not isinstance(self.grid, Grid):
             raise SceneError("settings.grid", "must be a contact_scene.Grid")
         check_choice("settings.minimiser", self.minimiser, {"lbfgsb", "pk", "cvxpy"})
         check_choice("settings.kernel", self.kernel, {"collocation", "love"})
+        for name in ("locate_detachment", "stop_peeling_trials"):
+            if not isinstance(getattr(self, name), bool):
+                raise SceneError(f"settings.{name}", f"must be true or false (got {getattr(self, name)!r})")
         object.__setattr__(self, "steps", check_int("settings.steps", self.steps, lo=2, hi=100_000))
         object.__setattr__(self, "snap_tolerance", check_real("settings.snap_tolerance", self.snap_tolerance, lo=0, hi=0.1, lo_open=True))
         object.__setattr__(self, "gtol", check_real("settings.gtol", self.gtol, lo=0, hi=1e-2, lo_open=True))
         object.__setattr__(self, "max_iterations", check_int("settings.max_iterations", self.max_iterations, lo=1))
         object.__setattr__(self, "memory", check_int("settings.memory", self.memory, lo=1, hi=100))
+
+
+def sequence_energy_settings() -> EnergySettings:
+    """The finite-range settings of a zero-range sequence: each range contributes only its
+    force maximum, so the snap-off is not bisected once a smooth maximum is bracketed and the
+    snap tolerance (and Brent's) is 4e-3 of the pull's scale, not 1e-3."""
+    return EnergySettings(snap_tolerance=4e-3, locate_detachment=False)
 
 
 @dataclass(frozen=True)
@@ -83,7 +106,8 @@ class ZeroRangeSettings:
     The default ratios reach l_c = 0.01 a: the circle's and the square's local rates still
     change below 0.04 a (benchmarks/study_energy_zero_range.py), and sequences stopping there
     missed the square's limit by 5 %.  ``normalise_area`` scales each run's force to the
-    nominal face area (the staircase area changes from grid to grid)."""
+    nominal face area (the staircase area changes from grid to grid).  ``energy``: the
+    settings of each range (:func:`sequence_energy_settings` by default)."""
 
     ratios: tuple[float, ...] = (0.08, 0.04, 0.02, 0.01)
     elements_per_process_zone: float = 2.0
@@ -91,7 +115,7 @@ class ZeroRangeSettings:
     minimum_elements_per_radius: float = 24.0
     potential: str = "exponential"
     normalise_area: bool = True
-    energy: EnergySettings = field(default_factory=EnergySettings)
+    energy: EnergySettings = field(default_factory=sequence_energy_settings)
 
     @classmethod
     def coarse(cls, elements_per_process_zone: float = 1.0, **kw) -> "ZeroRangeSettings":

@@ -74,7 +74,7 @@ def pull_off(scene: Scene, settings: EnergySettings, *, spacing: float | None = 
     if settings.minimiser == "cvxpy" and face_elements > settings.max_face_elements_cvxpy:
         raise SceneError("settings.minimiser", f"cvxpy is for small grids: {face_elements} face elements "
                          f"> {settings.max_face_elements_cvxpy}; use lbfgsb or pk")
-    eq = Equilibria(prob, settings)
+    eq = Equilibria(prob, settings, scene.indenter.shape.equivalent_radius)
     approach_scale = critical_approach_scale(scene)
     adhesive = potential is not None
     t1 = time.perf_counter()

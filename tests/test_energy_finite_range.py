@@ -6,6 +6,7 @@ benchmarks/study_energy_process_zone.py (quoted in ``bem_energy.potentials``); t
 envelope 0.16 / N of the fixed-range study (benchmarks/study_energy.py, tests/test_bem_energy.py);
 minimisers stopped at a projected gradient g agree on forces to about g relative.
 """
+import dataclasses
 import math
 
 import numpy as np
@@ -135,3 +136,71 @@ def test_cvxpy_pull_off_agrees_with_projected_cg():
     assert r.pulloff_approach == pytest.approx(ref.pulloff_approach, rel=1e-6)
     assert r.stiffness == pytest.approx(ref.stiffness, rel=1e-6)
     assert r.residual <= 1e-8
+
+
+# -- the levers that make the zero-range sequence fast keep its answers ----------------
+
+def _rho(ratio, work=0.02):
+    return math.sqrt(ratio * work)       # E* = 1, a = 1: l_c = rho^2 / w
+
+
+#: pulling steps where a detaching trial can be told from an attached one only by a rule that
+#: scales with l_c / a: circles with s = 0.8 and 0.4, a JKR sphere (paraboloid, R = 2 a)
+#: whose contact shrinks over the whole pull, and a graded body (k = 0.5)
+PEEL_CASES = {
+    "circle l_c = 0.08 a": (cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.0),
+                                     cs.Adhesion(0.02, _rho(0.08))), 24),
+    "circle l_c = 0.04 a": (cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.0),
+                                     cs.Adhesion(0.02, _rho(0.04))), 25),
+    "JKR sphere": (cs.Scene(cs.Indenter(cs.Circle(1.0), cs.Paraboloid(2.0)), cs.Homogeneous(1.0, 0.0),
+                            cs.Adhesion(0.02, _rho(0.1)), loading=cs.Loading(press_approach=0.2)), 20),
+    "graded k = 0.5": (cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, 0.5),
+                                cs.Adhesion(0.02, 0.05)), 16),
+}
+
+
+def _peel_pair(name):
+    sc, N = PEEL_CASES[name]
+    return [be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=N), stop_peeling_trials=stop))
+            for stop in (False, True)]
+
+
+@pytest.mark.parametrize("name", list(PEEL_CASES))
+def test_stopping_peeling_trials_keeps_the_loading_path(name):
+    """A pulling step whose contact falls below (1 - s) of its most, s = max(0.1, 10 l_c / a),
+    is detaching: stopping it and converging the detached state from U = 0 classifies every
+    step as the full minimisation does, so the path is the same and F_A, its approach and the
+    detachment approach agree to round-off (1e-9).  A fixed s = 0.1 classified attached steps
+    as detached: F_A -3.9 % (circle, l_c = 0.16 a), -1.9 % (0.08 a), -0.6 % (0.04 a), and the
+    sphere's detachment 0.033 earlier (test_a_fixed_peel_fraction_is_caught)."""
+    full, fast = _peel_pair(name)
+    assert full.converged and fast.converged and fast.detached
+    assert fast.pulloff_force == pytest.approx(full.pulloff_force, rel=1e-9)
+    assert fast.pulloff_approach == pytest.approx(full.pulloff_approach, rel=1e-9)
+    assert fast.detachment_approach == pytest.approx(full.detachment_approach, rel=1e-9)
+    assert fast.iterations <= full.iterations
+
+
+def test_a_fixed_peel_fraction_is_caught(monkeypatch):
+    """The mutant the rule guards against, kept as a test: with s fixed at 0.1 attached
+    steps of the l_c = 0.08 a circle are taken for detaching and F_A moves by percent."""
+    import bem_energy.equilibria as eqm
+
+    monkeypatch.setattr(eqm, "PEEL_FRACTION_PER_PROCESS_ZONE", 0.0)
+    full, fast = _peel_pair("circle l_c = 0.08 a")
+    assert abs(fast.pulloff_force / full.pulloff_force - 1) > 0.01
+
+
+def test_snap_off_need_not_be_located_once_a_smooth_maximum_is_bracketed():
+    """Without ``locate_detachment`` the bisection stops once attached states bracket the
+    smooth maximum: Brent's bracket is the same, so F_A is identical, with fewer
+    minimisations; the detachment approach is then known to within one continuation step."""
+    sc, N = PEEL_CASES["circle l_c = 0.08 a"]
+    st = be.EnergySettings(grid=cs.Grid(elements_per_radius=N))
+    full = be.solve(sc, st)
+    fast = be.solve(sc, dataclasses.replace(st, locate_detachment=False))
+    assert full.info["peak"] == fast.info["peak"] == "refined"
+    assert fast.pulloff_force == full.pulloff_force and fast.pulloff_approach == full.pulloff_approach
+    assert fast.stats.linear_solves < full.stats.linear_solves
+    step = (full.curve.approach[1] - full.curve.approach[2])
+    assert fast.detachment_approach <= full.detachment_approach <= fast.detachment_approach + step
