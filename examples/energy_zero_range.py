@@ -68,10 +68,11 @@ if __name__ == "__main__":
         p = out["result"].info["zero_range"]["rate"]
         s = np.asarray(out["ratios"]) ** p
         fig, ax = plt.subplots()
-        ax.plot(s, out["forces"], "o", label="finite range (2 elements per l_c)")
+        ax.plot(s, out["forces"], "o", label="finite range (the tests' coarse grids)")
         ax.plot([0.0], [out["extrapolated"]], "s", label="extrapolated")
         ax.plot([0.0, s.max()], [out["extrapolated"], out["forces"][0]], ":", color="grey")
         ax.axhline(1.0, color="k", lw=0.6, label="Kendall")
+        ax.set_ylim(top=1.02)
         ax.set_xlabel(f"(l_c / a)^{p:.2f} (rate fixed)")
         ax.set_ylabel("F_A / F_Kendall")
         ax.set_title("zero-range limit of the energy BEM, circle", fontsize=10)
