@@ -170,7 +170,7 @@ def pull_targets(scene: Scene, pressed_approach: float, problem: Problem) -> tup
         # far beyond any detachment the bounds allow (flat) or the press depth (curved)
         scale = abs(pressed_approach) + problem.spacing
         if problem.circle_critical_approach is not None:
-            scale += abs(problem.circle_critical_approach(float(problem.face.sum()) * problem.spacing**2))
+            scale += abs(problem.circle_critical_approach(float(problem.face.sum()) * problem.cell_area))
         final, user = pressed_approach - 1e3 * scale, False
     return [*scene.loading.turning_points, final], user
 

@@ -331,6 +331,8 @@ def test_result_reports_its_work_and_the_discretised_face():
     assert st.linear_iterations == r.iterations and st.unconverged == 0
     assert st.linear_solves == r.info["solves"] and st.events == r.info["events"] >= 1
     assert st.operator_applications == r.info["matvecs"] >= 2 * st.linear_iterations
+    declared = bg.GriffithInfo.__required_keys__ | bg.GriffithInfo.__optional_keys__
+    assert bg.GriffithInfo.__required_keys__ <= set(r.info) <= declared
     bad = run(square_scene(), N, maxiter=1)
     assert not bad.converged and bad.stats.unconverged >= 1
     assert any(m.startswith(f"{bad.stats.unconverged} contact solves did not reach rtol") for m in bad.messages)
