@@ -1,0 +1,118 @@
+"""The harness stays sharp: physics bugs from the mutation study (benchmarks/mutation_study.py,
+docs/mutation_study.md) that its checks must catch, each injected by monkeypatching.
+
+Each test checks a result without the mutant (the check passes) and with it (the same check
+fails).  Mutants already kept elsewhere are not repeated here: Love's integral x 1.01 on the
+same-grid stiffness check (tests/test_halfspace.py) and E instead of E* in the Griffith solver
+(tests/test_error_models.py).
+"""
+from __future__ import annotations
+
+import math
+
+import pytest
+
+import bem_griffith as bg
+import contact_scene as cs
+from contact_scene import theory as T
+from crossval.compare import check_results
+from crossval.suite import SUITE
+
+
+def _checks(scene, results) -> dict:
+    return {(c.method, c.quantity): c for c in check_results(scene, results) if c.kind == "relative"}
+
+
+def _griffith(scene, N):
+    r = bg.solve(scene, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)))
+    assert r.converged
+    return r
+
+
+def test_criterion_constant_five_percent_high_fails_kendalls_pulloff(monkeypatch):
+    """Mutant C1: Eq. 22's sigma_c 5 % high (Eq. 20's constant mistyped as 0.4293: (sqrt 2 - 1)/2
+    for (sqrt 2 - 1)/3).  The flat circle's thresholds scale with sigma_c, so F_A and d_c move
+    by +5 % at every resolution, beyond the Griffith BEM's bar at 16 per radius (3.6 %) from its
+    unmutated error (+2.2 %).
+    Caught by: the pull-off force check against Kendall (Eq. 6)."""
+    sc = SUITE["kendall_circle"]
+    ok = _checks(sc, {"bem_griffith": _griffith(sc, 16)})
+    assert ok[("bem_griffith", "pulloff_force")].passed
+    critical_stress = T.critical_stress
+    monkeypatch.setattr(T, "critical_stress", lambda **kw: 1.05 * critical_stress(**kw))
+    bad = _checks(sc, {"bem_griffith": _griffith(sc, 16)})
+    moved = bad[("bem_griffith", "pulloff_force")].value / ok[("bem_griffith", "pulloff_force")].value - 1
+    assert moved == pytest.approx(0.05, abs=0.005)     # linear in sigma_c between events
+    assert not bad[("bem_griffith", "pulloff_force")].passed
+    assert not bad[("bem_griffith", "pulloff_approach")].passed
+
+
+def test_eq34_with_the_wrong_cosine_fails_the_graded_stiffness_check(monkeypatch):
+    """Mutant T3: Eq. 34's factor cos(k pi/4) for cos(k pi/2): the closed form 6.2 % high at
+    k = 0.25.  A correct solver then disagrees with the theory by more than its bar.
+    Caught by: the Griffith BEM's stiffness check against Eq. 34 (graded circle, 32 per radius)."""
+    sc = SUITE["graded_circle_k0.25"]
+    r = _griffith(sc, 32)
+    ok = _checks(sc, {"bem_griffith": r})[("bem_griffith", "stiffness")]
+    assert ok.passed
+
+    def eq34_wrong_cosine(*, E0, c0, k, radius):
+        return 4.0 * (2.0 + k) * math.cos(k * math.pi / 4) / (3.0 + k) * E0 * radius ** (1.0 + k) / c0**k
+
+    monkeypatch.setattr(T, "graded_stiffness", eq34_wrong_cosine)
+    bad = _checks(sc, {"bem_griffith": r})[("bem_griffith", "stiffness")]
+    assert bad.reference / ok.reference - 1 == pytest.approx(0.0616, abs=5e-4)
+    assert not bad.passed
+
+
+def test_calibration_applied_inverted_fails_the_graded_circle(monkeypatch):
+    """Mutant C4: the graded calibration r(k) multiplies Eq. 42's sigma_c instead of dividing it:
+    F_A x r^2 = +13.8 % at k = 0.5.  Caught by: the Griffith BEM's pull-off check against Eq. 39
+    on the graded circle (a calibration residual: it must fail when the calibration is misapplied)."""
+    import bem_griffith.problem as problem
+    from bem_griffith.criterion import calibration
+
+    sc = SUITE["graded_circle_k0.5"]
+    ok = _checks(sc, {"bem_griffith": _griffith(sc, 32)})[("bem_griffith", "pulloff_force")]
+    assert ok.passed and ok.role == "calibration"
+    monkeypatch.setattr(problem, "stress_factor", lambda k, criterion: calibration(k)[0])
+    bad = _checks(sc, {"bem_griffith": _griffith(sc, 32)})[("bem_griffith", "pulloff_force")]
+    assert bad.value / ok.value == pytest.approx(calibration(0.5)[0] ** 2, rel=1e-6)
+    assert not bad.passed
+
+
+def test_fem_scaled_by_the_effective_modulus_fails_kendalls_stiffness(monkeypatch):
+    """Mutant M3: the FEM scales its unit solution by E* where Young's E belongs (its
+    dimensionless problem already carries nu): K x 1/(1 - nu^2) = +9.9 % at nu = 0.3.
+    Caught by: the FEM's stiffness check against Eq. 1 (its bar is a bound of about 1e-5)."""
+    import fem_reference.solver as fs
+
+    sc = SUITE["kendall_circle"]
+    settings = fs.FemSettings(grading=2.0, order=3)
+    ok = _checks(sc, {"fem_reference": fs.solve(sc, settings)})
+    assert all(c.passed for c in ok.values()) and ("fem_reference", "stiffness") in ok
+    material = fs._material
+
+    def with_effective_modulus(scene):
+        mat, _ = material(scene)
+        return mat, scene.material.effective_modulus
+
+    monkeypatch.setattr(fs, "_material", with_effective_modulus)
+    bad = _checks(sc, {"fem_reference": fs.solve(sc, settings)})
+    assert bad[("fem_reference", "stiffness")].difference == pytest.approx(1 / (1 - 0.3**2) - 1, abs=1e-3)
+    assert not bad[("fem_reference", "stiffness")].passed
+    assert not bad[("fem_reference", "pulloff_force")].passed
+
+
+def test_paraboloid_of_half_the_radius_fails_the_jkr_pulloff(monkeypatch):
+    """Mutant P1: the paraboloid's height r^2 / R where r^2 / (2 R) belongs (a sphere of half the
+    radius): the JKR pull-off 1.5 pi w R halves.  Caught by: the Griffith BEM's pull-off check
+    against JKR on the suite's sphere (bar 2.5/N)."""
+    sc = SUITE["jkr_sphere"]
+    ok = _checks(sc, {"bem_griffith": _griffith(sc, 16)})[("bem_griffith", "pulloff_force")]
+    assert ok.passed
+    monkeypatch.setattr(cs.Paraboloid, "height", lambda self, x, y: ((x - self.apex[0]) ** 2 + (y - self.apex[1]) ** 2)
+                        / self.radius)
+    bad = _checks(sc, {"bem_griffith": _griffith(sc, 16)})[("bem_griffith", "pulloff_force")]
+    assert bad.value / ok.value == pytest.approx(0.5, abs=0.05)
+    assert not bad.passed
