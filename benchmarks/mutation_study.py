@@ -380,6 +380,11 @@ def run_one(mutant: Mutant | None, args, baseline_report: dict | None, known_fai
     return rec
 
 
+def _md(text: str) -> str:
+    """Plain text for a Markdown table cell (no column breaks, no stray emphasis)."""
+    return str(text).replace("|", "/").replace("*", "\\*").replace("\n", " ")
+
+
 def _yes(x: bool | None) -> str:
     return "n/a" if x is None else ("yes" if x else "**no**")
 
@@ -392,6 +397,10 @@ def write_outputs(records: list[dict], meta: dict, out_dir: Path) -> None:
     t = [r["tests"]["caught"] for r in muts if "tests" in r]
     both = [r for r in muts if "quick_report" in r and "tests" in r]
     lines = [
+        "---",
+        "orphan: true",
+        "---",
+        "",
         "# Mutation study: does the harness catch a physics bug?",
         "",
         f"Written by `python benchmarks/mutation_study.py` on {meta['date']} ({meta['machine']}), base commit "
@@ -416,12 +425,16 @@ def write_outputs(records: list[dict], meta: dict, out_dir: Path) -> None:
         qr, ts = r.get("quick_report", {}), r.get("tests", {})
         full = r.get("full_report")
         full_cell = "not run" if full is None else (f"{_yes(full.get('caught'))}: {full.get('how', '')}")
-        test_cell = ts.get("first_failure") or (ts.get("message") if ts else "not run") or "-"
-        if ts.get("first_failure") and ts.get("message"):
-            test_cell += f" ({ts['message'][:120]})"
-        lines.append(f"| `{r['id']}` ({r['file']}) | {r['breaks']} | {_yes(qr.get('caught')) if qr else 'not run'} | "
-                     f"{qr.get('how', '') or '-'} | {_yes(ts.get('caught')) if ts else 'not run'} | "
-                     f"{test_cell.replace('|', '/')} | {full_cell} |")
+        test_cell = (ts.get("message") if ts else "not run") or "-"
+        if ts.get("first_failure"):
+            test_cell = f"`{ts['first_failure']}`" + (f" ({_md(ts['message'][:120])})" if ts.get("message") else "")
+        else:
+            test_cell = _md(test_cell)
+        if r.get("error"):
+            test_cell = _md("error: " + r["error"])
+        lines.append(f"| `{r['id']}` ({r['file']}) | {_md(r['breaks'])} | {_yes(qr.get('caught')) if qr else 'not run'} | "
+                     f"{_md(qr.get('how', '') or '-')} | {_yes(ts.get('caught')) if ts else 'not run'} | "
+                     f"{test_cell} | {_md(full_cell)} |")
     missed = [r for r in muts if r.get("quick_report", {}).get("caught") is False]
     if missed:
         lines += ["", "## Missed by the quick report: how far each quantity moved", "",
@@ -479,7 +492,7 @@ def main(argv=None) -> None:
         text = (args.base / m.file).read_text()
         if text.count(m.old) != m.count:
             raise SystemExit(f"{m.id}: {m.file} holds the old text {text.count(m.old)} times, expected {m.count}")
-    commit = subprocess.run(["git", "-C", str(args.base), "log", "-1", "--format=%h %s"], capture_output=True,
+    commit = subprocess.run(["git", "-C", str(args.base), "log", "-1", "--format=%h (%cs)"], capture_output=True,
                             text=True).stdout.strip()
     meta = {"date": f"{datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC",
             "machine": f"{platform.node()}, {platform.processor() or platform.machine()}, {os.cpu_count()} cores "
