@@ -364,8 +364,8 @@ def run_one(mutant: Mutant | None, args, baseline_report: dict | None, known_fai
     rec = {"id": name, "imported": check_import(copy, mutant.package if mutant else "contact_scene")}
     if mutant:
         rec.update(asdict(mutant))
-    log(f"{name}: quick report")
     if not args.skip_report:
+        log(f"{name}: quick report")
         rec["quick_report"] = quick_report(copy, args.report_timeout)
         if mutant is not None:
             rec["quick_report"].update(_report_verdict(rec["quick_report"], baseline_report))
@@ -403,8 +403,10 @@ def write_outputs(records: list[dict], meta: dict, out_dir: Path) -> None:
         "",
         "# Mutation study: does the harness catch a physics bug?",
         "",
-        f"Written by `python benchmarks/mutation_study.py` on {meta['date']} ({meta['machine']}), base commit "
-        f"`{meta['commit']}`; {meta['command']}.",
+        f"Written by `python benchmarks/mutation_study.py` on {meta['date']} ({meta['machine']}); base commit "
+        + " and ".join(f"`{c}`" for c in meta.get("commits") or [meta["commit"]])
+        + (" (each result's own commit is in mutation_study.json)" if len(meta.get("commits") or []) > 1 else "")
+        + f"; last command: {meta['command']}.",
         "",
         "Each mutant replaces one text of the package in a copy of the repository (exactly as listed in "
         "`benchmarks/mutation_study.py`), then runs `crossval report --quick --no-cache` (caught: a check fails "
@@ -458,6 +460,27 @@ def write_outputs(records: list[dict], meta: dict, out_dir: Path) -> None:
     (out_dir / "mutation_study.md").write_text("\n".join(lines) + "\n")
 
 
+def combine(files: list[Path], out_dir: Path) -> None:
+    """One table from several runs (e.g. the tests on one base, the quick reports on a later one):
+    each mutant's parts are taken from the last file that has them."""
+    results: dict[str, dict] = {}
+    meta: dict = {}
+    failures: set = set()
+    for f in files:
+        data = json.loads(f.read_text())
+        meta = {**meta, **data["meta"]}
+        failures |= set(data["meta"].get("baseline_test_failures", []))
+        for r in data["results"]:
+            results[r["id"]] = {**results.get(r["id"], {}), **r}
+    order = {m.id: i for i, m in enumerate(MUTANTS)}
+    meta["baseline_test_failures"] = sorted(failures)
+    meta["commits"] = sorted({p["commit"] for r in results.values() for k, p in r.items()
+                              if k in ("quick_report", "tests", "full_report") and isinstance(p, dict) and "commit" in p})
+    meta["command"] = "python benchmarks/mutation_study.py --combine " + " ".join(str(f) for f in files)
+    write_outputs(sorted(results.values(), key=lambda r: -1 if r["id"] == "baseline" else order.get(r["id"], 999)),
+                  meta, out_dir)
+
+
 def main(argv=None) -> None:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--base", type=Path, default=Path("/tmp/mut/base"), help="a clean clone of the repository")
@@ -474,9 +497,15 @@ def main(argv=None) -> None:
     p.add_argument("--baseline-report", type=Path, default=None,
                    help="a quick report's directory (results.json) of the unmutated base, instead of running it")
     p.add_argument("--merge", action="store_true",
-                   help="keep the records of mutants not run now from an existing mutation_study.json of the same base")
+                   help="update an existing mutation_study.json: parts not run now (quick report, tests) are kept, "
+                   "each labelled with the base commit it ran on")
+    p.add_argument("--combine", nargs="+", type=Path, metavar="JSON",
+                   help="merge the parts of earlier runs' mutation_study.json files (later files win), write --out, exit")
     p.add_argument("--list", action="store_true", help="print the catalogue and exit")
     args = p.parse_args(argv)
+    if args.combine:
+        combine(args.combine, args.out)
+        return
     if args.list:
         for m in MUTANTS:
             print(f"{m.id:32s} {m.file:30s} {m.breaks}")
@@ -510,33 +539,50 @@ def main(argv=None) -> None:
             "checks": _checks(args.baseline_report / "results.json"), "tail": [f"reused from {args.baseline_report}"]}}
     else:
         baseline = run_one(None, args, None, known_failures, lock)
-    records = [baseline]
+    for part in ("quick_report", "tests"):
+        if part in baseline:
+            baseline[part]["commit"] = commit
+    results: dict[str, dict] = {}
     old = args.out / "mutation_study.json"
     if args.merge and old.exists():
+        # parts (quick report, tests, full report) not run now are kept, each with its own base commit
         prev = json.loads(old.read_text())
-        if prev.get("meta", {}).get("commit") == commit:
-            now = {m.id for m in chosen}
-            records += [r for r in prev["results"] if r["id"] != "baseline" and r["id"] not in now]
-            log(f"kept {len(records) - 1} records of an earlier run")
-    write_outputs(records, meta, args.out)
+        results = {r["id"]: r for r in prev["results"]}
+        known_failures.update({t: True for t in prev.get("meta", {}).get("baseline_test_failures", [])})
+        log(f"merging with {len(results)} records of an earlier run")
+    order = {m.id: i for i, m in enumerate(MUTANTS)}
+
+    def add(rec):
+        merged = {**results.get(rec["id"], {}), **rec}
+        if "error" not in rec and ("quick_report" in rec or "tests" in rec):
+            merged.pop("error", None)
+        results[rec["id"]] = merged
+        meta["baseline_test_failures"] = sorted(t for t, bad in known_failures.items() if bad)
+        meta["commits"] = sorted({p["commit"] for r in results.values() for k, p in r.items()
+                                  if k in ("quick_report", "tests", "full_report") and isinstance(p, dict) and "commit" in p})
+        records = sorted(results.values(), key=lambda r: -1 if r["id"] == "baseline" else order.get(r["id"], 999))
+        write_outputs(records, meta, args.out)
+        return records
+
+    records = add(baseline)
 
     def job(m):
         try:
-            return run_one(m, args, baseline.get("quick_report"), known_failures, lock)
+            rec = run_one(m, args, results["baseline"].get("quick_report"), known_failures, lock)
+            for part in ("quick_report", "tests"):
+                if part in rec:
+                    rec[part]["commit"] = commit
+            return rec
         except Exception as exc:       # a broken mutant is recorded, not fatal to the study
             log(f"{m.id}: {type(exc).__name__}: {exc}")
             return {"id": m.id, **asdict(m), "error": f"{type(exc).__name__}: {exc}"}
 
     with ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
         for rec in pool.map(job, chosen):
-            records.append(rec)
-            order = {m.id: i for i, m in enumerate(MUTANTS)}
-            records.sort(key=lambda r: -1 if r["id"] == "baseline" else order.get(r["id"], 999))
-            meta["baseline_test_failures"] = sorted(t for t, bad in known_failures.items() if bad)
-            write_outputs(records, meta, args.out)
+            records = add(rec)
             shutil.rmtree(args.work / rec["id"], ignore_errors=True)
     if args.full_for_missed:
-        for rec in records[1:]:
+        for rec in list(records[1:]):
             if rec.get("quick_report", {}).get("caught") is False and rec.get("tests", {}).get("caught") is False:
                 m = next(x for x in MUTANTS if x.id == rec["id"])
                 copy = make_copy(args.base, args.work / m.id, m)
@@ -544,11 +590,9 @@ def main(argv=None) -> None:
                 if "full_baseline" not in meta:
                     meta["full_baseline"] = quick_report(args.work / "baseline", 4 * args.report_timeout, full=True)
                 full = quick_report(copy, 4 * args.report_timeout, full=True)
-                full.update(_report_verdict(full, meta["full_baseline"]))
-                rec["full_report"] = full
-                write_outputs(records, meta, args.out)
+                full.update(_report_verdict(full, meta["full_baseline"]), commit=commit)
+                records = add({"id": m.id, "full_report": full})
                 shutil.rmtree(copy, ignore_errors=True)
-    write_outputs(records, meta, args.out)
     log("done")
 
 
