@@ -111,8 +111,26 @@ def _plain_text_bars(app, what, name, obj, options, lines):
                            for part in _LITERAL.split(line))
 
 
+#: pages that benchmark scripts write when they are run (benchmarks/study_error_models.py,
+#: benchmarks/mutation_study.py): listed under "Measured" when present
+GENERATED_PAGES = ("error_models", "mutation_study")
+_MEASURED_TOC = "accuracy\nperformance\n"
+
+
+def _list_generated_pages(app, docname, source):
+    """Add the generated pages that exist to the index's "Measured" contents (a toctree entry
+    without its page would fail the build, a page in no toctree too)."""
+    if docname != root_doc:
+        return
+    present = "".join(f"{name}\n" for name in GENERATED_PAGES if (DOCS / f"{name}.md").is_file())
+    if _MEASURED_TOC not in source[0]:
+        raise RuntimeError(f"docs/{root_doc}.md no longer lists {_MEASURED_TOC!r}: update docs/conf.py")
+    source[0] = source[0].replace(_MEASURED_TOC, _MEASURED_TOC + present, 1)
+
+
 def setup(app):
     app.connect("autodoc-process-docstring", _plain_text_bars)
+    app.connect("source-read", _list_generated_pages)
 
 
 # -- MyST (the Markdown pages as they are in the repository) -------------------------------
