@@ -397,10 +397,6 @@ def write_outputs(records: list[dict], meta: dict, out_dir: Path) -> None:
     t = [r["tests"]["caught"] for r in muts if "tests" in r]
     both = [r for r in muts if "quick_report" in r and "tests" in r]
     lines = [
-        "---",
-        "orphan: true",
-        "---",
-        "",
         "# Mutation study: does the harness catch a physics bug?",
         "",
         f"Written by `python benchmarks/mutation_study.py` on {meta['date']} ({meta['machine']}); base commit "
