@@ -31,6 +31,7 @@ from .counters import WorkCounters
 from .problem import Problem
 from .recording import PullRecorder
 from .settings import GriffithSettings
+from .stress_intensity import DetachmentRule, PaperRule, detachment_rule
 
 __all__ = ["PullOutcome", "pull", "next_event", "cascade", "gap_coefficients", "pull_targets"]
 
@@ -76,17 +77,16 @@ def gap_coefficients(problem: Problem, solution: ContactSolution):
     return free, slope, offset
 
 
-def next_event(problem: Problem, solution: ContactSolution, approach: float, target: float) -> float:
+def next_event(problem: Problem, solution: ContactSolution, approach: float, target: float,
+               rule: DetachmentRule | None = None) -> float:
     """The nearest approach between ``approach`` and ``target`` (in the direction of travel)
-    at which an element of the contact set reaches sigma_c or a free element's gap closes;
-    ``target`` if none."""
+    at which an element of the contact set meets the detachment ``rule`` (default: Eq. 22,
+    sigma_c) or a free element's gap closes; ``target`` if none."""
+    rule = PaperRule(problem.critical_stress) if rule is None else rule
     direction = 1.0 if target > approach else -1.0
     nearest = target
     eps = 1e-13 * max(abs(approach), abs(target), 1e-300)
-    per_approach, profile = solution.pressure_per_approach, solution.profile_pressure
-    loaded = per_approach != 0
-    # tension -p = sigma_c  <=>  d = (xh - sigma_c) / x1
-    at_critical_stress = (profile[loaded] - problem.critical_stress) / per_approach[loaded]
+    at_critical_stress = rule.critical_approaches(solution)
     ahead = (at_critical_stress - approach) * direction >= -eps
     if ahead.any():
         candidates = at_critical_stress[ahead]
@@ -128,17 +128,17 @@ def _certainly_detached(problem: Problem, contact: np.ndarray, approach: float, 
 
 
 def cascade(problem: Problem, solution: ContactSolution, approach: float, settings: GriffithSettings,
-            counters: WorkCounters, messages: list, direction: float = -1.0) -> ContactSolution:
-    """Detach / re-attach at the fixed approach until no element exceeds sigma_c and no gap
-    is negative; returns ``solution`` itself when nothing changes.
+            counters: WorkCounters, messages: list, direction: float = -1.0,
+            rule: DetachmentRule | None = None) -> ContactSolution:
+    """Detach / re-attach at the fixed approach until no element meets the detachment
+    ``rule`` (default: Eq. 22, sigma_c) and no gap is negative; returns ``solution`` itself
+    when nothing changes.
 
     A free element whose gap is zero (to round-off) re-attaches when the gap is closing along
     the direction of travel: that is the gap event that brought the driver here."""
+    rule = PaperRule(problem.critical_stress) if rule is None else rule
     for _ in range(4 * problem.face_elements + 10):
-        tension = -solution.pressure(approach)
-        largest = tension.max() if tension.size else -np.inf
-        threshold = problem.critical_stress * (1 - settings.tie_tolerance)
-        detaching = tension >= threshold if largest >= threshold else np.zeros(tension.shape, bool)
+        detaching = rule.detaching(solution, approach, settings.tie_tolerance)
         free, slope, offset = gap_coefficients(problem, solution)
         gap = slope * approach + offset
         gap_tolerance = 1e-12 * max(abs(approach), problem.spacing * 1e-6)
@@ -176,9 +176,9 @@ def pull_targets(scene: Scene, pressed_approach: float, problem: Problem) -> tup
 
 
 def _next_approach(problem: Problem, solution: ContactSolution, approach: float, target: float,
-                   settings: GriffithSettings) -> float:
+                   settings: GriffithSettings, rule: DetachmentRule) -> float:
     if settings.driver == "event":
-        return next_event(problem, solution, approach, target)
+        return next_event(problem, solution, approach, target, rule)
     step = settings.step if target > approach else -settings.step
     return approach + step if (approach + step - target) * np.sign(step) < 0 else target
 
@@ -193,9 +193,10 @@ def pull(problem: Problem, scene: Scene, settings: GriffithSettings, counters: W
     cell = problem.cell_area
     max_events = 20 * problem.face_elements + 1000
     solution, approach = pressed, pressed_approach
+    rule = detachment_rule(problem, scene, settings)
     for target in targets:
         while solution.attached and approach != target:
-            upcoming = _next_approach(problem, solution, approach, target, settings)
+            upcoming = _next_approach(problem, solution, approach, target, settings, rule)
             recorder.snapshots_between(approach, upcoming, solution)
             previous, approach = approach, upcoming
             before = solution
@@ -203,7 +204,7 @@ def pull(problem: Problem, scene: Scene, settings: GriffithSettings, counters: W
                 # admissible: at an event the first element sits exactly at sigma_c (a peak)
                 recorder.point(approach, solution)
             solution = cascade(problem, solution, approach, settings, counters, outcome.messages,
-                               1.0 if target > previous else -1.0)
+                               1.0 if target > previous else -1.0, rule)
             if solution is not before:
                 if not solution.attached:
                     outcome.last_stable = Snapshot(float(approach), before.force(approach, cell), before.contact.copy(),

@@ -54,6 +54,13 @@ class GriffithSettings:
         factor by which the flat circle's pull-off under it misses Eq. 39, relative to the
         homogeneous circle on the same grid (``bem_griffith.criterion``, -0.95 <= k <= 0.95);
         ``"eq42"`` keeps the theory sheet's constant (any k).
+    criterion
+        The detachment rule of the pull.  ``"paper"`` (default): the paper's local criterion,
+        an element detaches when its tension reaches sigma_c (Eq. 22; Eq. 42 for graded
+        bodies).  ``"stress_intensity"``: a front cell detaches when the stress-intensity
+        factor fitted to the pressure 8-24 or more cells behind it reaches sqrt(2 E* w)
+        (``bem_griffith.stress_intensity``); it removes the staircase bias of Eq. 22 on
+        curved and rotated edges.  Flat punches on homogeneous, non-periodic half-spaces only.
     """
 
     grid: Grid = field(default_factory=lambda: Grid(elements_per_radius=32))
@@ -69,6 +76,7 @@ class GriffithSettings:
     preconditioner: str = "fourier"
     shrink_window: bool = True
     graded_criterion: str = "calibrated"
+    criterion: str = "paper"
 
     def __post_init__(self):
         if not isinstance(self.grid, Grid):
@@ -88,3 +96,7 @@ class GriffithSettings:
             raise SceneError("settings.shrink_window", f"must be True or False (got {self.shrink_window!r})")
         check_choice("settings.preconditioner", self.preconditioner, {"none", "fourier"})
         check_choice("settings.graded_criterion", self.graded_criterion, set(CRITERIA))
+        check_choice("settings.criterion", self.criterion, {"paper", "stress_intensity"})
+        if self.criterion == "stress_intensity" and self.grid.periodic:
+            raise SceneError("settings.criterion", "'stress_intensity' does not support a periodic grid (its front "
+                             "windows do not wrap); use criterion = 'paper' or periodic = false")
