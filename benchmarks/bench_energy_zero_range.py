@@ -10,7 +10,7 @@ table and the raw numbers go to ``--json`` (default ``docs/performance_energy_ze
 with the date, the machine and the load average at the start.  No timed tests use this.
 
     python benchmarks/bench_energy_zero_range.py [--faces circle,square,triangle] [--repeats 1]
-        [--baseline REV] [--json PATH]
+        [--baseline REV] [--json PATH] [--update] [--quick]
 
 The baseline default is the last revision before the zero-range speed-ups (same numbers as
 the pull-off before the modules were split, bit for bit).
@@ -54,11 +54,31 @@ def load_baseline(rev: str, where: Path):
     return importlib.import_module("bem_energy_baseline")
 
 
-def run(package, shape):
+def run(package, shape, quick: bool):
     sc = cs.Scene(cs.Indenter(shape), cs.Homogeneous(1.0, 0.0), cs.Adhesion(W))
     t = time.perf_counter()
-    r = package.solve(sc)
+    r = package.solve(sc, package.ZeroRangeSettings.coarse(1.0) if quick else None)
     return time.perf_counter() - t, r
+
+
+HEADERS = ("face", "old s", "new s", "old/new", "F_A/F_up old", "F_A/F_up new", "change",
+           "|change|/estimate", "max range change")
+
+
+def write(path: Path, args, started, load, rows, records):
+    rev = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True,
+                         text=True).stdout.strip()
+    out = {"written_by": "benchmarks/bench_energy_zero_range.py", "date": started.isoformat(timespec="seconds"),
+           "machine": {"platform": platform.platform(), "processor": platform.processor() or platform.machine(),
+                       "cpus": os.cpu_count(), "load_average_at_start": load},
+           "revision": rev, "baseline": args.baseline, "repeats": args.repeats,
+           "headers": list(HEADERS), "rows": [list(r) for r in rows], "faces": dict(records)}
+    if args.update and path.exists():
+        previous = json.loads(path.read_text())
+        kept = [r for r in previous.get("rows", []) if r[0] not in records]
+        out["rows"] = kept + out["rows"]
+        out["faces"] = {**{k: v for k, v in previous.get("faces", {}).items() if k not in records}, **records}
+    path.write_text(json.dumps(out, indent=1) + "\n")
 
 
 def main(argv=None):
@@ -67,6 +87,9 @@ def main(argv=None):
     ap.add_argument("--repeats", type=int, default=1, help="runs of each algorithm per face (median)")
     ap.add_argument("--baseline", default=BASELINE, help="git revision of the previous algorithm")
     ap.add_argument("--json", default=str(ROOT / "docs" / "performance_energy_zero_range.json"))
+    ap.add_argument("--quick", action="store_true", help="the harness's coarse sequence instead (a smoke test)")
+    ap.add_argument("--update", action="store_true",
+                    help="keep the other faces already in --json (each face keeps its own date and load)")
     args = ap.parse_args(argv)
     faces = [f.strip() for f in args.faces.split(",") if f.strip()]
     started = datetime.now(timezone.utc)
@@ -76,12 +99,13 @@ def main(argv=None):
         old_pkg = load_baseline(args.baseline, Path(tmp))
         for name in faces:
             shape = FACES[name]()
+            face_load = os.getloadavg()
             F_up = T.upper_bound_force(E_star=1.0, work=W, area=shape.area)
             times = {"old": [], "new": []}
             results = {}
             for _ in range(args.repeats):
                 for label, pkg in (("old", old_pkg), ("new", be)):
-                    dt, r = run(pkg, shape)
+                    dt, r = run(pkg, shape, args.quick)
                     times[label].append(dt)
                     results[label] = r
                     print(f"  {name} {label}: {dt:.1f} s, F_A / F_up = {r.pulloff_force / F_up:.6f}", flush=True)
@@ -94,27 +118,21 @@ def main(argv=None):
             rows.append((name, f"{t_old:.1f}", f"{t_new:.1f}", f"{t_old / t_new:.2f}",
                          f"{old.pulloff_force / F_up:.5f}", f"{new.pulloff_force / F_up:.5f}", f"{change:+.1e}",
                          f"{abs(change) / new.accuracy_estimate:.3f}", f"{worst_range:.1e}"))
-            records[name] = {"old_s": times["old"], "new_s": times["new"], "ratio": t_old / t_new,
+            records[name] = {"date": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+                             "load_average_at_start": face_load,
+                             "sequence": "coarse" if args.quick else "default", "old_s": times["old"], "new_s": times["new"], "ratio": t_old / t_new,
                              "F_old": old.pulloff_force, "F_new": new.pulloff_force, "F_upper": F_up,
                              "estimate_new": new.accuracy_estimate, "estimate_old": old.accuracy_estimate,
                              "ranges": new.info["zero_range"]["process_zone_ratios"],
                              "range_forces_old": f_old, "range_forces_new": f_new,
                              "largest_range_change": worst_range,
                              "minimiser_iterations_old": old.iterations, "minimiser_iterations_new": new.iterations}
-    headers = ("face", "old s", "new s", "old/new", "F_A/F_up old", "F_A/F_up new", "change",
-               "|change|/estimate", "max range change")
-    print(f"\nzero-range limit, default sequence, E* = 1, w = {W}; baseline {args.baseline}; "
+            if args.json:      # after every face, so that a long run leaves what it measured
+                write(Path(args.json), args, started, load, rows, records)
+    print(f"\nzero-range limit, {'coarse' if args.quick else 'default'} sequence, E* = 1, w = {W}; baseline {args.baseline}; "
           f"load average {load[0]:.1f} at the start")
-    print(table(rows, headers))
-    rev = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True,
-                         text=True).stdout.strip()
-    out = {"written_by": "benchmarks/bench_energy_zero_range.py", "date": started.isoformat(timespec="seconds"),
-           "machine": {"platform": platform.platform(), "processor": platform.processor() or platform.machine(),
-                       "cpus": os.cpu_count(), "load_average_at_start": load},
-           "revision": rev, "baseline": args.baseline, "repeats": args.repeats,
-           "headers": list(headers), "rows": [list(r) for r in rows], "faces": records}
+    print(table(rows, HEADERS))
     if args.json:
-        Path(args.json).write_text(json.dumps(out, indent=1) + "\n")
         print(f"written {args.json}")
 
 
