@@ -380,6 +380,16 @@ def run_one(mutant: Mutant | None, args, baseline_report: dict | None, known_fai
     return rec
 
 
+def _part_commits(records: list[dict]) -> dict:
+    """Which base commit(s) each part of the study ran on."""
+    out: dict = {}
+    for label, key in (("quick reports", "quick_report"), ("tests", "tests"), ("full reports", "full_report")):
+        cs = {r[key]["commit"] for r in records if isinstance(r.get(key), dict) and "commit" in r[key]}
+        if cs:
+            out[label] = cs
+    return out
+
+
 def _md(text: str) -> str:
     """Plain text for a Markdown table cell (no column breaks, no stray emphasis)."""
     return str(text).replace("|", "/").replace("*", "\\*").replace("\n", " ")
@@ -399,9 +409,8 @@ def write_outputs(records: list[dict], meta: dict, out_dir: Path) -> None:
     lines = [
         "# Mutation study: does the harness catch a physics bug?",
         "",
-        f"Written by `python benchmarks/mutation_study.py` on {meta['date']} ({meta['machine']}); base commit "
-        + " and ".join(f"`{c}`" for c in meta.get("commits") or [meta["commit"]])
-        + (" (each result's own commit is in mutation_study.json)" if len(meta.get("commits") or []) > 1 else "")
+        f"Written by `python benchmarks/mutation_study.py` on {meta['date']} ({meta['machine']}); base commit(s): "
+        + "; ".join(f"{label} on " + ", ".join(f"`{c}`" for c in sorted(cs)) for label, cs in _part_commits(records).items())
         + f"; last command: {meta['command']}.",
         "",
         "Each mutant replaces one text of the package in a copy of the repository (exactly as listed in "
