@@ -37,7 +37,8 @@ def error_bars(scene: Scene, *, spacing: float, face_area: float,
         return bars
     N = shape.equivalent_radius / spacing
     defect = abs(face_area / shape.area - 1)
-    c = model()["quantities"]["stiffness"]["c"]
+    m = model()["quantities"]["stiffness"]
+    c = m["c"] if N >= model()["fit_from"] else m["coarse_c"]
     bars["stiffness"] = ErrorBar(c / N + 0.5 * defect,
                                  f"{c:.3g}/N + 0.5 |dA/A| at N = {N:.3g} (flat circle and square; "
                                  "benchmarks/study_error_models.py)")

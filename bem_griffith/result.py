@@ -12,6 +12,7 @@ from contact_scene import PowerLawGraded, Result, Scene
 from .counters import WorkCounters
 from .criterion import calibration
 from .driver import PullOutcome
+from .error_model import error_bars
 from .problem import Problem
 from .recording import PullRecorder
 from .settings import GriffithSettings
@@ -114,4 +115,6 @@ def assemble_result(*, problem: Problem, scene: Scene, settings: GriffithSetting
         stats=counters.stats(events=outcome.events, face_elements=face_elements),
         face_area=face_elements * problem.spacing**2,
         discretisation="grid",
+        error_bars=error_bars(scene, spacing=problem.spacing, face_area=face_elements * problem.spacing**2,
+                              graded_criterion=settings.graded_criterion),
     )
