@@ -38,7 +38,7 @@ def _fmt(v) -> str:
     return str(v)
 
 
-_SOLVER_LOGGERS = ("bem_griffith", "bem_energy", "fem_reference", "crossval")
+_SOLVER_LOGGERS = (*METHODS, "crossval")
 
 
 class _LiveStatus:
@@ -231,7 +231,7 @@ def compare_cmd(file, resolution, quick, as_json):
         if m.resolution_is_grid(sc):
             m.check_resolution(sc, resolution, field="--resolution")
     with _LiveStatus(f"compare {sc.name or file}") as live:
-        cmp = compare(sc, resolution=resolution, resolutions={"bem_energy": 1.0} if quick else None,
+        cmp = compare(sc, resolution=resolution, resolutions=_compare_quick(sc) if quick else None,
                       point_callback=live.point)
     if as_json:
         click.echo(json_dumps({
@@ -273,6 +273,11 @@ def _progress(total: int, desc: str):
         bar.update(1)
         bar.set_postfix_str(f"{job.scene.name}/{job.method}", refresh=False)
     return bar, cb
+
+
+def _compare_quick(sc) -> dict:
+    """``compare --quick``: each method's own quick resolution, where it has one."""
+    return {m.name: m.sweeps.compare_quick for m in applicable_methods(sc) if m.sweeps.compare_quick is not None}
 
 
 @main.command("report")

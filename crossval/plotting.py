@@ -84,11 +84,7 @@ def _decade_limits(values):
 def _resolution_meaning(study, method) -> str:
     from .methods import METHODS
 
-    if method == "fem_reference":
-        return "N: 1/grading"
-    if METHODS[method].resolution_is_grid(study.scene):
-        return "N: elements/radius"
-    return "N: elements/process zone"
+    return METHODS[method].resolution(study.scene).label
 
 
 def plot_error_vs_time(study, ax=None):

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .cache import package_version
-from .methods import applicable_methods
+from .methods import METHODS, applicable_methods
 from .runner import Job, run_jobs
 from .suite import SUITE
 
@@ -23,7 +23,7 @@ FORMAT = 1
 QUANTITIES = ("pulloff_force", "pulloff_approach", "stiffness")
 #: one quick run per method and suite scene (BEM: 16 elements per radius; energy BEM: one
 #: element per process zone; FEM: grading 2)
-CASES = {"bem_griffith": 16, "bem_energy": 1.0, "fem_reference": 0.5}
+CASES = {m.name: m.sweeps.regression for m in METHODS.values()}
 #: the same code reproduces its numbers to round-off; 1e-7 leaves room for other BLAS/FFT builds
 RTOL = 1e-7
 

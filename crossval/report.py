@@ -24,8 +24,8 @@ __all__ = ["Report", "report", "QUICK", "FULL"]
 
 #: resolutions per method for the quick (< 3 min on 2 cores) and full report
 #: (bem_energy in the zero-range limit: elements per process zone)
-QUICK = {"bem_griffith": (8, 12, 16), "bem_energy": (1.0,), "fem_reference": (0.5, 2 / 3)}
-FULL = {"bem_griffith": (16, 24, 32, 48, 64), "bem_energy": (1.0, 2.0), "fem_reference": (0.5, 2 / 3, 1.0)}
+QUICK = {m.name: m.sweeps.quick for m in METHODS.values()}
+FULL = {m.name: m.sweeps.full for m in METHODS.values()}
 
 
 @dataclass(frozen=True, eq=False)
@@ -78,7 +78,7 @@ def _agreement_row(scene, st, fin, checks, methods):
         if r is None:
             row.append(float("nan"))
             note.append("n/a")
-        elif m == ref.own_method:
+        elif m == ref.own_method and not ref.own_sequence:
             row.append(float("nan"))
             note.append("is ref.")
         elif ref.kind == "none" or not ref.value:
@@ -88,7 +88,7 @@ def _agreement_row(scene, st, fin, checks, methods):
             v = abs(r.pulloff_force / ref.value - 1)
             row.append(v)
             calib = any(c.method == m and c.quantity == "pulloff_force" and c.role == "calibration" for c in checks)
-            own = ref.kind == "extrapolated" and m == "bem_griffith"
+            own = ref.own_sequence and m == ref.own_method
             tags = ["calib."] * calib + ["own extrap."] * own + ["< ref. error bar"] * (v <= ref.uncertainty)
             note.append("\n".join(tags))
     return row, note
@@ -98,8 +98,8 @@ def _error_sentence(st) -> str:
     """What the error panel measures against, and what each method's sequence supports."""
     ref = st.reference_info
     kind = {"closed form": "the closed form",
-            "fem": "the FEM's finest run; its a-posteriori estimate is the error bar",
-            "extrapolated": ("the Griffith BEM's sequence, forces scaled to the nominal face area, extrapolated to "
+            "bounded": f"{ref.own_method}'s finest run; its a-posteriori bound is the error bar",
+            "extrapolated": (f"{ref.own_method}'s sequence, forces scaled to the nominal face area, extrapolated to "
                              "N -> infinity in 1/N; the error bar is the "
                              "spread of the leave-one-out extrapolations, and errors inside it are not resolved"),
             "none": "nothing: there is no trustworthy reference"}[ref.kind]
@@ -166,8 +166,9 @@ def report(out_dir="report", *, quick: bool = True, workers: int = 1, scheduler=
             axs[0].axhline(-th["pulloff_force"], color="grey", lw=0.6, ls=":", label=th["source"])
         axs[0].legend(fontsize=7)
         axs[0].set_title(s)
-        bem = finest[s].get("bem_griffith")
-        if bem is not None and bem.last_stable is not None:
+        # the last stable contact of the first method that recorded one (a grid method's)
+        bem = next((r for r in finest[s].values() if r.last_stable is not None), None)
+        if bem is not None:
             plotting.plot_contact(bem.last_stable, axs[1])
             axs[1].set_title("last stable contact (BEM)", fontsize=9)
         else:

@@ -37,8 +37,7 @@ __all__ = ["StudyRow", "Study", "Convergence", "ErrorReference", "study", "conve
 
 #: per method, the resolutions a study sweeps unless told otherwise (BEM: elements per
 #: radius; FEM: 1/grading)
-DEFAULT_RESOLUTIONS = {"bem_griffith": (8, 12, 16, 24, 32), "bem_energy": (1.0, 2.0, 3.0),
-                       "fem_reference": (0.5, 2 / 3, 1.0)}
+DEFAULT_RESOLUTIONS = {m.name: m.sweeps.study for m in METHODS.values()}
 
 #: runs shorter than this measure start-up, caching and the other processes on the machine
 #: more than the solve, so no exponent of error against time is fitted through them
@@ -65,12 +64,15 @@ class ErrorReference:
     """What the errors are measured against."""
     value: float
     name: str
-    #: "closed form" | "fem" | "extrapolated" | "none"
+    #: "closed form" | "bounded" (one result with a bounded error) | "extrapolated" | "none"
     kind: str
     #: relative error bar of the reference itself (0 for a closed form)
     uncertainty: float = 0.0
-    #: the method whose own runs are not measured against it (the FEM reference), if any
+    #: the method the reference comes from, if any
     own_method: str | None = None
+    #: whether it is that method's own extrapolated sequence (its errors against it are
+    #: measured, but their order is assumed, not measured)
+    own_sequence: bool = False
 
 
 @dataclass(frozen=True)
@@ -174,34 +176,41 @@ def _at_nominal_area(scene, result, quantity) -> tuple[float, bool]:
     rather than the convergence.  Both sequences have the same limit (the staircase's area
     tends to the nominal one), so the scaling changes the error bar, not the reference."""
     v = getattr(result, quantity)
-    elements = result.info.get("face_elements")
-    if quantity != "pulloff_force" or not elements or not scene.indenter.profile.is_flat:
+    area = result.face_area
+    if quantity != "pulloff_force" or area is None or not scene.indenter.profile.is_flat:
         return v, False
     k = getattr(scene.material, "exponent", 0.0)
-    area = elements * result.grid_spacing**2
     return float(T.force_at_nominal_area(v, area=area, nominal_area=scene.indenter.shape.area, k=k)), True
+
+
+def _reference_method(scene, kind: str) -> str | None:
+    """The first registered method that applies to ``scene`` and serves as a reference of ``kind``."""
+    return next((m.name for m in METHODS.values() if m.reference_kind == kind and m.applies(scene) is None), None)
 
 
 def _reference(scene, quantity, by, res) -> ErrorReference:
     theory = reference_values(scene)
     if quantity in theory:
         return ErrorReference(theory[quantity], theory["source"], "closed form")
-    if "fem_reference" in res:
-        finest = max(res["fem_reference"])
-        r = by[("fem_reference", finest)]
-        u = r.accuracy_estimate or 0.0
-        return ErrorReference(getattr(r, quantity), f"fem_reference at 1/grading {finest:g} (+-{u:.1e})", "fem",
-                              u, own_method="fem_reference")
-    if len(res.get("bem_griffith", ())) >= 3:
-        ns = sorted(res["bem_griffith"])
-        vals, scaled = zip(*(_at_nominal_area(scene, by[("bem_griffith", n)], quantity) for n in ns))
+    bounded = _reference_method(scene, "bounded")
+    if bounded in res:
+        finest = max(res[bounded])
+        r = by[(bounded, finest)]
+        bar = r.error_bars.get(quantity)
+        u = bar.relative if bar is not None else math.inf
+        return ErrorReference(getattr(r, quantity), f"{bounded} at {METHODS[bounded].resolution(scene).label} = "
+                                                    f"{finest:g} (+-{u:.1e})", "bounded", u, own_method=bounded)
+    seq = _reference_method(scene, "sequence")
+    if seq is not None and len(res.get(seq, ())) >= 3:
+        ns = sorted(res[seq])
+        vals, scaled = zip(*(_at_nominal_area(scene, by[(seq, n)], quantity) for n in ns))
         lim, err = extrapolate_first_order(ns, vals)
         u = err / abs(lim) if lim else math.inf
         how = ", forces scaled to the nominal area," if all(scaled) else ""
-        return ErrorReference(lim, f"bem_griffith{how} extrapolated in 1/N over N = {', '.join(f'{n:g}' for n in ns)} "
-                                   f"(+-{u:.1e})", "extrapolated", u)
-    return ErrorReference(math.nan, "no reference (no closed form, no FEM, fewer than 3 Griffith resolutions)",
-                          "none", math.inf)
+        return ErrorReference(lim, f"{seq}{how} extrapolated in 1/N over N = {', '.join(f'{n:g}' for n in ns)} "
+                                   f"(+-{u:.1e})", "extrapolated", u, own_method=seq, own_sequence=True)
+    return ErrorReference(math.nan, "no reference (no closed form, no bounded method, fewer than 3 resolutions of "
+                                    "an extrapolated sequence)", "none", math.inf)
 
 
 def _time_convergence(rows, floor) -> Convergence:
@@ -224,10 +233,11 @@ def study(scene: cs.Scene, *, methods=None, resolutions: dict | None = None, qua
     given = dict(resolutions or {})
     res = {m: tuple(given.get(m, DEFAULT_RESOLUTIONS[m])) for m in names}
     if quantity not in reference_values(scene):
-        if METHODS["fem_reference"].applies(scene) is None:
-            res.setdefault("fem_reference", given.get("fem_reference", DEFAULT_RESOLUTIONS["fem_reference"][-1:]))
-        elif METHODS["bem_griffith"].applies(scene) is None:
-            res.setdefault("bem_griffith", given.get("bem_griffith", DEFAULT_RESOLUTIONS["bem_griffith"]))
+        bounded, seq = _reference_method(scene, "bounded"), _reference_method(scene, "sequence")
+        if bounded is not None:
+            res.setdefault(bounded, given.get(bounded, DEFAULT_RESOLUTIONS[bounded][-1:]))
+        elif seq is not None:
+            res.setdefault(seq, given.get(seq, DEFAULT_RESOLUTIONS[seq]))
     jobs = [Job(scene, m, r) for m in res for r in res[m]]
     results = run_jobs(jobs, workers=workers, scheduler=scheduler, cache=cache, callback=callback)
     by = {(j.method, j.resolution): r for j, r in zip(jobs, results)}
@@ -237,15 +247,15 @@ def study(scene: cs.Scene, *, methods=None, resolutions: dict | None = None, qua
         if m not in names:
             continue
         v = getattr(result, quantity)
-        measured = ref.kind != "none" and m != ref.own_method and ref.value != 0
+        measured = ref.kind != "none" and (m != ref.own_method or ref.own_sequence) and ref.value != 0
         signed = v / ref.value - 1 if measured else math.nan
         rows.append(StudyRow(m, r, result.wall_time_s, v, abs(signed), signed))
     rates, trates, conv, tconv = {}, {}, {}, {}
     for m in names:
         mr = [row for row in rows if row.method == m]
-        if m == ref.own_method:
+        if m == ref.own_method and not ref.own_sequence:
             conv[m] = tconv[m] = Convergence("none", reason="it is the reference")
-        elif ref.kind == "extrapolated" and m == "bem_griffith":
+        elif m == ref.own_method:
             # its errors against its own 1/N extrapolation have order 1 by construction
             c = convergence([r.resolution for r in mr], [r.signed_error for r in mr], floor=ref.uncertainty)
             reason = "its own 1/N extrapolation is the reference, so the order is assumed, not measured"
