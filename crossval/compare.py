@@ -1,23 +1,21 @@
 """Run a scene through every applicable method and check each against theory and each other.
 
-Tolerances come from the convergence studies (README, "Accuracy, as measured"):
-* bem_griffith, flat circle: F_A within 0.5/N and d_c within 0.6/N of Kendall (N elements per
-  radius), stiffness within 0.15/N plus the staircase; JKR sphere: F_A within 2.5/N of 1.5 pi w R
-  (first order from above, about 1.9/N measured).  Other faces: between the lower bound (Eq. 18,
-  less the same 0.5/N envelope) and the upper bound (Eq. 13).
-* fem_reference: its own per-quantity error bounds (``info["error_estimates"]``; tested on
-  homogeneous and graded cases: error <= bound, largest bound <= 10 x largest error).
-* bem_energy, zero-range limit: F_A within its extrapolation estimate, which bounds the error
-  on every window of the stored study (tests/test_zero_range_estimator.py), at least 1 % (the
-  circle sweep of benchmarks/study_energy.py); stiffness as the Griffith solver on its finest grid;
-  the approach is that of the finest finite range and not checked.  A finite-range scene is not the zero-range theory: its pull-off
-  is not checked against Kendall or the other methods.
-* Graded circles, bem_griffith: the default criterion is calibrated on exactly this case (the
-  flat circle's pull-off against Eq. 39, bem_griffith.criterion), so its pull-off force against
-  Eq. 39 or against the FEM is a calibration residual, labelled ``role="calibration"``: it shows the
-  calibration is applied as fitted, it does not validate the method.  The approach and the
-  stiffness stay validation checks.  With Eq. 42's uncalibrated constant the pull-off is not
-  checked (it misses Eq. 39 by up to 43 %).
+Every tolerance is an error bar a method states for its own result (``Result.error_bars``),
+fitted by a convergence study that shows it covers the method's error; the bar names the study:
+
+* bem_griffith: ``bem_griffith.error_model`` (``benchmarks/study_error_models.py``): c/N plus the
+  local criterion's plateau plus the result's own staircase area defect, per quantity; faces
+  with corners against the 1/N limit of their own sequence; graded faces with the calibrated
+  criterion add the calibration's terms, and on the flat circle their pull-off is a calibration
+  residual (``role="calibration"``), not a validation.
+* fem_reference: its per-quantity bounds (degree pair plus truncation; tests/test_fem_reference.py:
+  error <= bound on every tested case).
+* bem_energy: ``bem_energy.error_model``: the zero-range limit's force by its extrapolation
+  estimate (bounds every window of the stored study), the stiffness c/N plus the area defect;
+  no bar on a finite range's pull-off (it is not the zero-range theory) or on the approach.
+
+Faces without a closed form are checked between the bounds (Eqs. 13, 18; the lower bound less
+the method's bar) and across methods.
 """
 from __future__ import annotations
 
@@ -29,7 +27,7 @@ from contact_scene import theory as T
 
 from .methods import METHODS, applicable_methods
 
-__all__ = ["Check", "Comparison", "compare", "check_results", "reference_values"]
+__all__ = ["Check", "Comparison", "compare", "check_results", "reference_values", "error_bar"]
 
 
 @dataclass(frozen=True)
@@ -45,6 +43,10 @@ class Check:
     #: "validation": an independent check; "calibration": a residual of a quantity the method
     #: was fitted to (it can fail, but its passing validates nothing)
     role: str = "validation"
+    #: whether every result the check compares converged; a check of an unconverged result fails
+    converged: bool = True
+    #: where the tolerance comes from (the error model's study, or the rule between methods)
+    basis: str = ""
 
     @property
     def difference(self) -> float:
@@ -52,6 +54,8 @@ class Check:
 
     @property
     def passed(self) -> bool:
+        if not self.converged:
+            return False
         if self.kind == "bounds":
             return self.reference * (1 - self.tolerance) <= self.value <= self.upper * (1 + 1e-12)
         return abs(self.difference) <= self.tolerance
@@ -64,6 +68,11 @@ class Check:
         return "calib" if self.role == "calibration" else "ok"
 
     def explain(self) -> str:
+        if not self.converged and self.quantity == "converged":
+            return f"{self.method}: did not converge ({self.basis or 'see the result messages'})"
+        if not self.converged:
+            return (f"{self.method}: {self.quantity} = {self.value:.6g} comes from a result that did not converge, "
+                    "so it fails whatever its value")
         if self.role == "calibration":
             return (f"{self.method}: {self.quantity} = {self.value:.6g}, calibration residual against "
                     f"{self.reference_name} {self.reference:.6g}: {self.difference:+.3%} (bound {self.tolerance:.3%}; "
@@ -114,58 +123,9 @@ def reference_values(scene: cs.Scene) -> dict:
     return out
 
 
-def force_tolerance(scene: cs.Scene, method: str, result: cs.Result) -> float:
-    """Relative accuracy of a method's pull-off force, from the convergence studies."""
-    if method == "fem_reference":
-        # its own bound on the error (tests/test_fem_reference.py: error <= bound <= 10 x error)
-        return _fem_bounds(result)["pulloff_force"]
-    if method == "bem_energy" and "zero_range" in result.info:
-        # the estimate bounds the extrapolation's error on every window of the stored study,
-        # the coarse sequence's overshoot on faces with corners included
-        # (tests/test_zero_range_estimator.py; bem_energy.zero_range.tail_bracket)
-        return max(result.accuracy_estimate or 0.0, 0.01)
-    N = scene.indenter.shape.equivalent_radius / result.grid_spacing
-    return (0.5 if scene.indenter.profile.is_flat else 2.5) / N
-
-
-def _fem_bounds(result: cs.Result) -> dict:
-    est = result.info.get("error_estimates")
-    if est:
-        return {q: float(est[q]) for q in ("pulloff_force", "pulloff_approach", "stiffness")}
-    t = result.accuracy_estimate if result.accuracy_estimate is not None else math.inf
-    return {"pulloff_force": t, "pulloff_approach": t, "stiffness": t}
-
-
-def _tolerances(scene: cs.Scene, method: str, result: cs.Result) -> dict:
-    t = force_tolerance(scene, method, result)
-    if method == "fem_reference":
-        return _fem_bounds(result)
-    if not scene.indenter.profile.is_flat:
-        return {"pulloff_force": t}
-    N = scene.indenter.shape.equivalent_radius / result.grid_spacing
-    # stiffness: the fitted 0.15/N plus the staircase (K ~ sqrt(A): half of sqrt(2) P h / A, P/A = 2/a)
-    tol = {"pulloff_force": t, "pulloff_approach": 0.6 / N, "stiffness": 0.15 / N + math.sqrt(2) / N}
-    if method == "bem_energy":
-        if "zero_range" not in result.info:
-            return {"stiffness": tol["stiffness"]}
-        tol.pop("pulloff_approach")   # a finite-range approach, not extrapolated (see bem_energy.zero_range)
-    if isinstance(scene.material, cs.PowerLawGraded) and scene.material.exponent != 0:
-        if method == "bem_griffith" and result.info.get("graded_criterion") == "calibrated" and N >= 32:
-            # the homogeneous circle's envelope 0.5/N, the calibration's first-order term (the
-            # fitted |c|/r over 32-181 per radius: at most 0.5 for k >= -0.75, 0.6 below), its
-            # uncertainty, and the staircase area's share of the raw force, F ~ A^((3+k)/4)
-            # (bem_griffith.criterion, benchmarks/study_griffith_graded.py)
-            k = scene.material.exponent
-            area = result.info["face_elements"] * result.grid_spacing**2
-            first = 0.6 if k < -0.75 else 0.5
-            t = ((0.5 + first) / N + result.info["criterion_uncertainty"] / result.info["criterion_ratio"]
-                 + (3 + k) / 4 * abs(area / scene.indenter.shape.area - 1))
-            tol.update(pulloff_force=t, pulloff_approach=t + tol["stiffness"])
-        else:
-            # Eq. 42's constant misses Eq. 39 by up to 43 %; the calibration holds from 32 per radius
-            tol.pop("pulloff_force")
-            tol.pop("pulloff_approach")
-    return tol
+def error_bar(result: cs.Result, quantity: str) -> cs.ErrorBar | None:
+    """The method's own bar on ``quantity`` (None: the method claims no accuracy for it here)."""
+    return result.error_bars.get(quantity)
 
 
 #: The two BEMs' stiffness on one grid differs by their kernels' discretisation only (Love's
@@ -176,51 +136,56 @@ def _tolerances(scene: cs.Scene, method: str, result: cs.Result) -> dict:
 SAME_GRID_STIFFNESS = 0.1
 
 
-def _same_grid_bems(name_a: str, a: cs.Result, name_b: str, b: cs.Result) -> bool:
-    """The Griffith and the energy BEM on one grid (same element size, same staircase face)."""
-    if {name_a, name_b} != {"bem_griffith", "bem_energy"}:
-        return False
-    energy = a if name_a == "bem_energy" else b
-    return "zero_range" not in energy.info and math.isclose(a.grid_spacing, b.grid_spacing, rel_tol=1e-12)
-
-
-def _is_calibrated(scene: cs.Scene, result: cs.Result, quantity: str) -> bool:
-    """Whether ``quantity`` of ``result`` was fitted to this very scene's closed form: the
-    calibrated graded criterion's pull-off force on a flat circle (bem_griffith.criterion)."""
-    return (quantity == "pulloff_force" and result.info.get("graded_criterion") == "calibrated"
-            and isinstance(scene.indenter.shape, cs.Circle) and scene.indenter.profile.is_flat)
+def _same_grid(a: cs.Result, b: cs.Result) -> bool:
+    """Two single-grid results on grids of one element size: the same staircase face, so the
+    difference of their stiffnesses is the two kernels' discretisation only."""
+    return (a.discretisation == b.discretisation == "grid" and a.method != b.method
+            and math.isclose(a.grid_spacing, b.grid_spacing, rel_tol=1e-12))
 
 
 def check_results(scene: cs.Scene, results: dict) -> tuple[Check, ...]:
-    """Checks of solved results against the closed forms and against each other."""
+    """Checks of solved results against the closed forms and against each other.
+
+    A method is checked on the quantities it has an error bar for (``Result.error_bars``, from its
+    convergence studies): against a closed form within its bar; against another method within
+    the two bars added in quadrature (their discretisation errors are independent), except two
+    single-grid BEMs on one grid, whose stiffnesses share the staircase face and are held to
+    their kernels' measured difference (:data:`SAME_GRID_STIFFNESS`).  A result that did not
+    converge fails every check it enters."""
     theory = reference_values(scene)
     checks = []
     src = theory.get("source", "")
     for name, r in results.items():
-        tol = _tolerances(scene, name, r)
+        if not r.converged:
+            # whatever bars it has, an unconverged result fails: never a check silently skipped
+            checks.append(Check(name, "converged", 0.0, 1.0, "convergence", 0.0, converged=False,
+                                basis="; ".join(r.messages)))
         for q in ("pulloff_force", "pulloff_approach", "stiffness"):
-            if q in theory and q in tol:
-                role = "calibration" if _is_calibrated(scene, r, q) else "validation"
-                checks.append(Check(name, q, getattr(r, q), theory[q], src, tol[q], role=role))
-        if "upper_force" in theory and "pulloff_force" in tol:
-            N = scene.indenter.shape.equivalent_radius / r.grid_spacing
-            slack = tol["pulloff_force"] if name == "bem_energy" else 0.5 / N
-            checks.append(Check(name, "pulloff_force", r.pulloff_force, theory["lower_force"], src, slack,
-                                kind="bounds", upper=theory["upper_force"]))
+            bar = error_bar(r, q)
+            if q in theory and bar is not None:
+                checks.append(Check(name, q, getattr(r, q), theory[q], src, bar.relative, role=bar.role,
+                                    converged=r.converged, basis=bar.source))
+        bar = error_bar(r, "pulloff_force")
+        if "upper_force" in theory and bar is not None:
+            checks.append(Check(name, "pulloff_force", r.pulloff_force, theory["lower_force"], src, bar.relative,
+                                kind="bounds", upper=theory["upper_force"], converged=r.converged, basis=bar.source))
     names = list(results)
     for i in range(len(names)):
         for j in range(i + 1, len(names)):
             a, b = results[names[i]], results[names[j]]
-            ta, tb = _tolerances(scene, names[i], a), _tolerances(scene, names[j], b)
             for q in ("pulloff_force", "stiffness"):
-                if q in ta and q in tb:
-                    role = ("calibration" if _is_calibrated(scene, a, q) or _is_calibrated(scene, b, q)
-                            else "validation")
-                    tol = ta[q] + tb[q]
-                    if q == "stiffness" and _same_grid_bems(names[i], a, names[j], b):
-                        tol = min(tol, SAME_GRID_STIFFNESS / (scene.indenter.shape.equivalent_radius / a.grid_spacing))
-                    checks.append(Check(f"{names[i]} vs {names[j]}", q, getattr(a, q), getattr(b, q),
-                                        names[j], tol, role=role))
+                ba, bb = error_bar(a, q), error_bar(b, q)
+                if ba is None or bb is None:
+                    continue
+                role = "calibration" if "calibration" in (ba.role, bb.role) else "validation"
+                tol = math.hypot(ba.relative, bb.relative)
+                basis = "the two error bars in quadrature"
+                if q == "stiffness" and _same_grid(a, b):
+                    N = scene.indenter.shape.equivalent_radius / a.grid_spacing
+                    tol = min(tol, SAME_GRID_STIFFNESS / N)
+                    basis = f"the kernels' same-grid difference {SAME_GRID_STIFFNESS:g}/N"
+                checks.append(Check(f"{names[i]} vs {names[j]}", q, getattr(a, q), getattr(b, q),
+                                    names[j], tol, role=role, converged=a.converged and b.converged, basis=basis))
     return tuple(checks)
 
 

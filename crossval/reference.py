@@ -8,7 +8,6 @@ import numpy as np
 
 import contact_scene as cs
 
-from .compare import force_tolerance
 from .methods import METHODS
 from .suite import load_scene_or_builtin
 
@@ -17,9 +16,21 @@ __all__ = ["Reference", "reference", "assert_matches_reference"]
 
 @dataclass(frozen=True, eq=False)
 class Reference:
+    """A reference result and its error bars (the method's, from its convergence studies)."""
+
     scene: cs.Scene
     result: cs.Result
-    tolerance: float          # the reference's own relative accuracy (from the convergence studies)
+
+    def error_bar(self, quantity: str) -> float | None:
+        """The reference's own relative accuracy on ``quantity``, or None if it claims none."""
+        bar = self.result.error_bars.get(quantity)
+        return None if bar is None else bar.relative
+
+    @property
+    def tolerance(self) -> float:
+        """The pull-off force's bar (the quantity every built-in reference has one for)."""
+        bar = self.error_bar("pulloff_force")
+        return math.inf if bar is None else bar
 
 
 def reference(scene_or_name, *, resolution: float = 64) -> Reference:
@@ -27,11 +38,15 @@ def reference(scene_or_name, *, resolution: float = 64) -> Reference:
     path: the FEM for circular flat punches it covers, else the Griffith BEM at ``resolution``
     elements per radius."""
     scene = scene_or_name if isinstance(scene_or_name, cs.Scene) else load_scene_or_builtin(scene_or_name)
-    if METHODS["fem_reference"].applies(scene) is None:
-        method, r = "fem_reference", METHODS["fem_reference"].solve(scene)
+    bounded = [m for m in METHODS.values() if m.reference_kind == "bounded" and m.applies(scene) is None]
+    if bounded:
+        method, r = bounded[0].name, bounded[0].solve(scene)
     else:
-        method, r = "bem_griffith", METHODS["bem_griffith"].solve(scene, resolution=resolution)
-    return Reference(scene, r, force_tolerance(scene, method, r))
+        grid = next(m for m in METHODS.values() if m.reference_kind == "sequence" and m.applies(scene) is None)
+        method, r = grid.name, grid.solve(scene, resolution=resolution)
+    if not r.converged:
+        raise RuntimeError(f"the reference solve ({method}) did not converge: {'; '.join(r.messages)}")
+    return Reference(scene, r)
 
 
 _SIGNS = ("this package's convention is F < 0 in tension and d < 0 when pulled (the pull-off force is the "
@@ -53,26 +68,36 @@ def _from_curve(approach, force):
 def assert_matches_reference(ref: Reference, *, pulloff_force=None, pulloff_approach=None, stiffness=None,
                              curve=None, rtol: float = 0.0) -> None:
     """Raise AssertionError naming every quantity that differs from the reference by more than
-    the reference's own accuracy plus ``rtol``.  A ``curve`` (approach, force) is reduced to its
-    largest tensile force, the approach there, and the slope of its first segment."""
+    the reference's own error bar on it plus ``rtol``.  A ``curve`` (approach, force) is reduced
+    to its largest tensile force, the approach there, and the slope of its first segment; of
+    these, quantities the reference has no bar for are not compared.  A quantity given
+    explicitly that the reference has no bar for is an error (ValueError), not a pass."""
     __tracebackhide__ = True    # pytest shows the message, not this function's body
     if pulloff_force is not None and pulloff_force < 0:
         raise AssertionError(f"pulloff_force = {pulloff_force:.6g} is negative; it is a magnitude: {_SIGNS}")
+    explicit = {n for n, v in (("pulloff_force", pulloff_force), ("pulloff_approach", pulloff_approach),
+                               ("stiffness", stiffness)) if v is not None}
     if curve is not None:
         f, d, k = _from_curve(*curve)
         pulloff_force = f if pulloff_force is None else pulloff_force
         pulloff_approach = d if pulloff_approach is None else pulloff_approach
         stiffness = k if stiffness is None else stiffness
-    tol = ref.tolerance + rtol
     bad = []
     for name, value in (("pulloff_force", pulloff_force), ("pulloff_approach", pulloff_approach),
                         ("stiffness", stiffness)):
         if value is None:
             continue
+        own = ref.error_bar(name)
+        if own is None:
+            if name in explicit:
+                raise ValueError(f"scene {ref.scene.name or '(unnamed)'}: the reference ({ref.result.method}) has no "
+                                 f"error bar on {name}, so it cannot be checked against it")
+            continue
+        tol = own + rtol
         want = getattr(ref.result, name)
         diff = value / want - 1 if want else math.inf
         if not abs(diff) <= tol:
             bad.append(f"{name}: {value:.6g} vs reference {want:.6g} ({ref.result.method}): {diff:+.3%}, "
-                       f"tolerance {tol:.3%} (reference accuracy {ref.tolerance:.3%} + rtol {rtol:.3%})")
+                       f"tolerance {tol:.3%} (reference accuracy {own:.3%} + rtol {rtol:.3%})")
     if bad:
         raise AssertionError(f"scene {ref.scene.name or '(unnamed)'}: " + "; ".join(bad))

@@ -134,11 +134,15 @@ def test_calibrated_graded_pulloff_is_labelled_a_calibration_residual():
     sc = SUITE["graded_circle_k0.5"]
     th = reference_values(sc)
     N = 40
+    from bem_griffith.error_model import error_bars
+
+    area = round(np.pi * N * N) / N**2
     fake = cs.Result("bem_griffith", th["pulloff_force"], th["pulloff_approach"], th["stiffness"], True, 1.0 / N,
-                     info={"graded_criterion": "calibrated", "criterion_ratio": 1.0, "criterion_uncertainty": 0.003,
-                           "face_elements": round(np.pi * N * N)})
+                     face_area=area, error_bars=error_bars(sc, spacing=1.0 / N, face_area=area,
+                                                           graded_criterion="calibrated"))
     fem = cs.Result("fem_reference", th["pulloff_force"], th["pulloff_approach"], th["stiffness"], True, 1e-5,
-                    accuracy_estimate=1e-5)
+                    accuracy_estimate=1e-5, discretisation="mesh",
+                    error_bars={q: cs.ErrorBar(1e-5, "test") for q in cs.QUANTITIES})
     checks = check_results(sc, {"bem_griffith": fake, "fem_reference": fem})
     roles = {(c.method, c.quantity): c.role for c in checks}
     assert roles[("bem_griffith", "pulloff_force")] == "calibration"
@@ -148,7 +152,9 @@ def test_calibrated_graded_pulloff_is_labelled_a_calibration_residual():
     calib = [c for c in checks if c.role == "calibration"]
     assert all(c.label == "calib" and "not a validation" in c.explain() for c in calib)
     # a homogeneous circle's Griffith pull-off is a validation
-    hom = check_results(SUITE["kendall_circle"], {"bem_griffith": dataclasses.replace(fake, info={})})
+    hom_bars = error_bars(SUITE["kendall_circle"], spacing=1.0 / N, face_area=area, graded_criterion="calibrated")
+    hom = check_results(SUITE["kendall_circle"], {"bem_griffith": dataclasses.replace(fake, error_bars=hom_bars)})
+    assert hom
     assert all(c.role == "validation" for c in hom)
 
 
