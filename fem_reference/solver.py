@@ -27,9 +27,10 @@ import numpy as np
 from skfem import MeshTri
 
 from contact_scene import Circle, Curve, ErrorBar, Homogeneous, PowerLawGraded, Result, Scene, SceneError, SolverStats
-from contact_scene.errors import check_int, check_real
+from contact_scene.errors import check_choice, check_int, check_real
 
-from .model import Material, assemble, build_mesh, build_tensor_mesh, saddle_matrix, solve_unit_approach
+from .model import (KERNELS, Material, assemble, bases, build_mesh, build_tensor_mesh, local_saddle_matrices, saddle_matrix,
+                    solve_unit_approach)
 
 __all__ = ["FemSettings", "solve", "solve_with_resolution", "unit_solution", "UnitSolution"]
 
@@ -61,6 +62,14 @@ class FemSettings:
     fields_path
         Where to write the displacement and pressure at pull-off (VTU or XDMF, by meshio)
         when the scene asks for fields.
+    kernels
+        ``"vectorised"`` (default): element matrices from batched products of precomputed
+        strains, a nested-dissection elimination order and diagonal pivots
+        (:func:`fem_reference.model.nested_dissection`).  ``"scikit-fem"``: scikit-fem's
+        ``asm`` of the weak forms and SuperLU's default ordering with threshold pivoting, the
+        plain statement of the same discretisation, several times slower; both give the same
+        matrices to rounding and the same answers to the solve's precision
+        (``benchmarks/bench_fem.py`` runs them side by side).
     """
 
     grading: float = 1.0
@@ -70,8 +79,10 @@ class FemSettings:
     vce_radius: float = 0.25
     compliance_check: bool = False
     fields_path: str | None = None
+    kernels: str = "vectorised"
 
     def __post_init__(self):
+        check_choice("fem.kernels", self.kernels, KERNELS)
         object.__setattr__(self, "grading", check_real("fem.grading", self.grading, lo=0.05, hi=4.0))
         object.__setattr__(self, "order", check_int("fem.order", self.order, lo=2, hi=4))
         object.__setattr__(self, "domain_radius", check_real("fem.domain_radius", self.domain_radius, lo=16.0, hi=2.0**40))
@@ -156,8 +167,8 @@ def unit_solution(material: Material, settings: FemSettings, *, energy_release: 
     mesh = build(material, settings) if mesh is None else mesh
     t1 = time.perf_counter()
     log.info("assembling and solving: %d elements of degree %d", mesh.t.shape[1], settings.order)
-    model = assemble(mesh, material, order=settings.order)
-    x = solve_unit_approach(model)
+    model = assemble(mesh, material, order=settings.order, kernels=settings.kernels)
+    x = solve_unit_approach(model, kernels=settings.kernels)
     t2 = time.perf_counter()
     Mx = model.M @ x
     K = 2 * math.pi * float(np.add.reduce(x * Mx))            # the pairwise sum of _energy
@@ -169,16 +180,27 @@ def unit_solution(material: Material, settings: FemSettings, *, energy_release: 
     # only elements with a moved vertex change, so dM/da is assembled on those alone
     q = _shift(mesh, settings.vce_radius, material.mapping)
     moved = np.flatnonzero((q[mesh.t] > 0).any(axis=0))
-    Mp, _, _ = saddle_matrix(_moved(mesh, delta, q), material, order=settings.order, elements=moved)
-    Mm, _, _ = saddle_matrix(_moved(mesh, -delta, q), material, order=settings.order, elements=moved)
-    dK_vce = 2 * math.pi * _energy(Mp - Mm, x) / (2 * delta)
+    if settings.kernels == "vectorised":
+        # x^T (dM/da) x element by element: no global matrix for the moved elements
+        Kp, dofs = local_saddle_matrices(*bases(_moved(mesh, delta, q), settings.order, None, moved), material)
+        Km, _ = local_saddle_matrices(*bases(_moved(mesh, -delta, q), settings.order, None, moved), material)
+        xe = x[dofs.T]
+        dK_vce = 2 * math.pi * float(np.add.reduce(np.einsum("ea,eab,eb->e", xe, Kp - Km, xe))) / (2 * delta)
+    else:
+        Mp, _, _ = saddle_matrix(_moved(mesh, delta, q), material, order=settings.order, elements=moved,
+                                 kernels=settings.kernels)
+        Mm, _, _ = saddle_matrix(_moved(mesh, -delta, q), material, order=settings.order, elements=moved,
+                                 kernels=settings.kernels)
+        dK_vce = 2 * math.pi * _energy(Mp - Mm, x) / (2 * delta)
     t3 = time.perf_counter()
     timings = {"mesh": t1 - t0, "solve": t2 - t1, "energy_release": t3 - t2}
     dK_c = None
     if settings.compliance_check:
-        plus = assemble(_moved(mesh, delta, q), material, order=settings.order, face_radius=1 + delta)
-        minus = assemble(_moved(mesh, -delta, q), material, order=settings.order, face_radius=1 - delta)
-        xp, xm = solve_unit_approach(plus), solve_unit_approach(minus)
+        plus = assemble(_moved(mesh, delta, q), material, order=settings.order, face_radius=1 + delta,
+                        kernels=settings.kernels)
+        minus = assemble(_moved(mesh, -delta, q), material, order=settings.order, face_radius=1 - delta,
+                         kernels=settings.kernels)
+        xp, xm = solve_unit_approach(plus, kernels=settings.kernels), solve_unit_approach(minus, kernels=settings.kernels)
         dK_c = 2 * math.pi * (_energy(plus.M, xp) - _energy(minus.M, xm)) / (2 * delta)
         timings["compliance_check"] = time.perf_counter() - t3
     return UnitSolution(K, K_react, dK_vce, dK_c, model.M.shape[0], mesh.t.shape[1], timings, mesh, model, x)
