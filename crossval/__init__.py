@@ -2,11 +2,11 @@
 from .compare import Check, Comparison, compare
 from .methods import METHODS, applicable_methods, get_method
 from .reference import Reference, assert_matches_reference, reference
-from .suite import SUITE
-# the functions, not their modules, are the library API (modules stay importable as crossval.report etc.)
 from .regress import regress
 from .report import report
 from .study import study
+from .suite import SUITE
 
+# the functions, not their modules, are the library API (modules stay importable as crossval.report etc.)
 __all__ = ["METHODS", "applicable_methods", "get_method", "compare", "Check", "Comparison", "reference",
            "Reference", "assert_matches_reference", "SUITE", "study", "report", "regress"]

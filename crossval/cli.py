@@ -190,8 +190,8 @@ def solve_cmd(file, method_name, resolution, range_, as_json):
     if range_ is not None:
         if not method.uses_range:
             users = ", ".join(m.name for m in METHODS.values() if m.uses_range)
-            raise SceneError("--range", f"{method.name} is a zero-range (Griffith) method and has no interaction range; "
-                             f"drop --range, or use --method {users}")
+            raise SceneError("--range", f"{method.name} is a zero-range (Griffith) method and has no interaction "
+                             f"range; drop --range, or use --method {users}")
         sc = dataclasses.replace(sc, adhesion=dataclasses.replace(sc.adhesion, range=range_))
     why_not = method.applies(sc)
     if why_not:
@@ -237,7 +237,8 @@ def compare_cmd(file, resolution, quick, as_json):
         click.echo(json_dumps({
             "scene": sc.name, "passed": cmp.passed, "theory": cmp.theory, "skipped": cmp.skipped,
             "results": {k: {q: getattr(r, q) for q in ("pulloff_force", "pulloff_approach", "stiffness", "converged",
-                                                        "wall_time_s", "grid_spacing")} for k, r in cmp.results.items()},
+                                                        "wall_time_s", "grid_spacing")}
+                        for k, r in cmp.results.items()},
             "checks": [{"method": c.method, "quantity": c.quantity, "value": c.value, "reference": c.reference,
                         "reference_name": c.reference_name, "difference": c.difference, "tolerance": c.tolerance,
                         "passed": c.passed, "role": c.role} for c in cmp.checks],

@@ -119,7 +119,8 @@ def reference_values(scene: cs.Scene) -> dict:
         E0, c0, k = mat.surface_modulus, mat.reference_depth, mat.exponent
         out.update(pulloff_force=T.graded_adhesion_force(E0=E0, c0=c0, k=k, radius=shape.radius, work=w),
                    pulloff_approach=T.graded_critical_approach(E0=E0, c0=c0, k=k, radius=shape.radius, work=w),
-                   stiffness=T.graded_stiffness(E0=E0, c0=c0, k=k, radius=shape.radius), source="graded (Eqs. 34, 38, 39)")
+                   stiffness=T.graded_stiffness(E0=E0, c0=c0, k=k, radius=shape.radius),
+                   source="graded (Eqs. 34, 38, 39)")
     return out
 
 
@@ -203,7 +204,8 @@ def compare(scene: cs.Scene, *, methods=None, resolution: float | None = None, r
     own = dict(resolutions or {})
     unknown = set(own) - set(METHODS)
     if unknown:
-        raise cs.SceneError("resolutions", f"unknown method(s) {', '.join(sorted(unknown))}; available: {', '.join(METHODS)}")
+        raise cs.SceneError("resolutions",
+                            f"unknown method(s) {', '.join(sorted(unknown))}; available: {', '.join(METHODS)}")
     results = {}
     for m in chosen:
         res = own[m.name] if m.name in own else (resolution if m.resolution_is_grid(scene) else None)

@@ -7,8 +7,8 @@ from __future__ import annotations
 
 import importlib
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 from contact_scene import Scene, SceneError
 
@@ -147,7 +147,8 @@ def _fem_resolution(scene: Scene) -> Resolution:
     graded = getattr(scene.material, "exponent", 0.0) > 0    # the tensor mesh (fem_reference.model)
     # FemSettings.grading in [0.05, 4]; resolution = 1 / grading
     return Resolution("mesh refinement 1/grading (elements grow by at most 1/resolution x their distance from "
-                      "the punch edge)", "N: 1/grading", 1 / (4.0 if graded else MAX_ISOTROPIC_GRADING), 1 / 0.05, False)
+                      "the punch edge)", "N: 1/grading", 1 / (4.0 if graded else MAX_ISOTROPIC_GRADING), 1 / 0.05,
+                      False)
 
 
 def _energy_applies(scene: Scene) -> str | None:

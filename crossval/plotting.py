@@ -125,7 +125,7 @@ def plot_error_vs_time(study, ax=None):
         e = [max(r.error, 1e-12) for r in mr]
         label = m if timed else f"{m} ({_resolution_meaning(study, m)})"
         (line,) = ax.plot(x, e, "-", lw=1, label=label)
-        for xi, r, ei in zip(x, mr, e):
+        for xi, r, ei in zip(x, mr, e, strict=True):
             ax.plot(xi, ei, "o", color=line.get_color(), ms=5,
                     mfc=line.get_color() if r.error > unc else "white")
             if not timed:

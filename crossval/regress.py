@@ -51,7 +51,8 @@ def regress(*, update: bool = False, path: Path = REFERENCE_FILE, workers: int =
     jobs = _jobs()
     results = run_jobs(jobs, workers=workers, callback=callback)
     current = [{"scene": j.scene.name, "method": j.method, "resolution": j.resolution,
-                "values": {q: getattr(r, q) for q in QUANTITIES}, "rtol": RTOL} for j, r in zip(jobs, results)]
+                "values": {q: getattr(r, q) for q in QUANTITIES}, "rtol": RTOL}
+               for j, r in zip(jobs, results, strict=True)]
     if update:
         data = {"format": FORMAT, "package_version": package_version(), "cases": current}
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -69,7 +70,8 @@ def regress(*, update: bool = False, path: Path = REFERENCE_FILE, workers: int =
     for c in current:
         ref = index.get((c["scene"], c["method"], c["resolution"]))
         if ref is None:
-            out.append(Mismatch(c["scene"], c["method"], "(missing from the reference file)", float("nan"), float("nan"), 0))
+            out.append(Mismatch(c["scene"], c["method"], "(missing from the reference file)",
+                                float("nan"), float("nan"), 0))
             continue
         for q in QUANTITIES:
             a, b = ref["values"][q], c["values"][q]

@@ -10,13 +10,12 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-
+from . import plotting
 from .cache import ResultCache, package_version
-from .jsonio import dumps as json_dumps
 from .compare import check_results, reference_values
+from .jsonio import dumps as json_dumps
 from .methods import METHODS, applicable_methods
 from .runner import Job, run_jobs
-from . import plotting
 from .study import study
 from .suite import SUITE
 
@@ -179,12 +178,15 @@ def report(out_dir="report", *, quick: bool = True, workers: int = 1, scheduler=
             f"<tr><td>{html.escape(m)}</td><td>{r.pulloff_force:.6g}</td><td>{r.pulloff_approach:.6g}</td>"
             f"<td>{r.stiffness:.6g}</td><td>{r.curve.contact_area[0] if r.curve is not None else float('nan'):.4g}</td>"
             f"<td>{r.wall_time_s:.2f}</td><td>{r.converged}</td></tr>" for m, r in finest[s].items())
-        theory_rows = "".join(f"<tr><td>{html.escape(k)}</td><td>{v:.6g}</td></tr>" for k, v in th.items() if k != "source")
+        theory_rows = "".join(f"<tr><td>{html.escape(k)}</td><td>{v:.6g}</td></tr>"
+                              for k, v in th.items() if k != "source")
         chk = "".join(f"<li class={'ok' if c.passed else 'fail'}>{c.label}: {html.escape(c.explain())}</li>"
                       for c in checks[s])
-        notes_html = "".join(f"<li>{html.escape(m)}: {html.escape(msg)}</li>" for m, r in finest[s].items() for msg in r.messages)
+        notes_html = "".join(f"<li>{html.escape(m)}: {html.escape(msg)}</li>"
+                             for m, r in finest[s].items() for msg in r.messages)
         sections.append(
-            f"<h2 id='{s}'>{html.escape(s)}</h2><table><tr><th>method</th><th>F_A</th><th>d at F_A</th><th>stiffness</th>"
+            f"<h2 id='{s}'>{html.escape(s)}</h2><table><tr><th>method</th><th>F_A</th><th>d at F_A</th>"
+            f"<th>stiffness</th>"
             f"<th>initial area</th><th>wall s</th><th>converged</th></tr>{rows}</table>"
             f"<p>Theory ({html.escape(th.get('source', 'none'))}):</p><table>{theory_rows}</table>"
             f"<p>{html.escape(_error_sentence(st))}</p>"
@@ -207,7 +209,7 @@ def report(out_dir="report", *, quick: bool = True, workers: int = 1, scheduler=
         from . import extremes as ex
 
         rows = ex.extreme_cases()
-        data["extremes"] = [dict(zip(ex.HEADERS, r)) for r in rows]
+        data["extremes"] = [dict(zip(ex.HEADERS, r, strict=True)) for r in rows]
         head = "".join(f"<th>{html.escape(h)}</th>" for h in ex.HEADERS)
         body = "".join("<tr>" + "".join(f"<td>{html.escape(str(v))}</td>" for v in r) + "</tr>" for r in rows)
         extreme_html = (f"<h2 id='extremes'>Stiff and extreme cases</h2><p>Stiffness error against Eq. 1 / Eq. 34 "
@@ -221,7 +223,8 @@ def report(out_dir="report", *, quick: bool = True, workers: int = 1, scheduler=
         "<style>body{font-family:sans-serif;max-width:1300px;margin:auto}img{max-width:100%;height:auto}table{border-collapse:collapse}"
         "td,th{border:1px solid #ccc;padding:2px 6px;font-size:13px}.fail{color:#b00}.ok{color:#060}</style>"
         f"<h1>Method comparison ({'quick' if quick else 'full'} suite)</h1>"
-        f"<p>package {package_version()}; {len(names)} scenes; {'all checks passed' if passed else 'SOME CHECKS FAILED'}; "
+        f"<p>package {package_version()}; {len(names)} scenes; "
+        f"{'all checks passed' if passed else 'SOME CHECKS FAILED'}; "
         f"{wall:.0f} s.</p><h2>Agreement</h2><img src='data:image/png;base64,{agreement_png}' alt='agreement'>"
         f"<p>{html.escape(AGREEMENT_CAPTION)}</p>" + "".join(sections)
         + extreme_html)

@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import logging
 import os
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Callable, Sequence
 
 import contact_scene as cs
 
@@ -69,9 +69,9 @@ def run_jobs(jobs: Sequence[Job], *, workers: int = 1, scheduler: str | None = N
         from concurrent.futures import ProcessPoolExecutor, as_completed as cf_completed
 
         with ProcessPoolExecutor(max_workers=workers) as ex:
-            futs = {ex.submit(_run, jobs[i]): i for i in todo}
-            for f in cf_completed(futs):
-                done(futs[f], f.result())
+            pending = {ex.submit(_run, jobs[i]): i for i in todo}
+            for g in cf_completed(pending):
+                done(pending[g], g.result())
     else:
         for i in todo:
             done(i, _run(jobs[i]))

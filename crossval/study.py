@@ -203,7 +203,7 @@ def _reference(scene, quantity, by, res) -> ErrorReference:
     seq = _reference_method(scene, "sequence")
     if seq is not None and len(res.get(seq, ())) >= 3:
         ns = sorted(res[seq])
-        vals, scaled = zip(*(_at_nominal_area(scene, by[(seq, n)], quantity) for n in ns))
+        vals, scaled = zip(*(_at_nominal_area(scene, by[(seq, n)], quantity) for n in ns), strict=True)
         lim, err = extrapolate_first_order(ns, vals)
         u = err / abs(lim) if lim else math.inf
         how = ", forces scaled to the nominal area," if all(scaled) else ""
@@ -240,7 +240,7 @@ def study(scene: cs.Scene, *, methods=None, resolutions: dict | None = None, qua
             res.setdefault(seq, given.get(seq, DEFAULT_RESOLUTIONS[seq]))
     jobs = [Job(scene, m, r) for m in res for r in res[m]]
     results = run_jobs(jobs, workers=workers, scheduler=scheduler, cache=cache, callback=callback)
-    by = {(j.method, j.resolution): r for j, r in zip(jobs, results)}
+    by = {(j.method, j.resolution): r for j, r in zip(jobs, results, strict=True)}
     ref = _reference(scene, quantity, by, res)
     rows = []
     for (m, r), result in by.items():
