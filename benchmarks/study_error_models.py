@@ -82,7 +82,7 @@ def _area_defect(scene, N) -> float:
 def _envelope(Ns, errs, plateau=0.0, area=None, exponent=0.0) -> float:
     """The smallest c with |err| <= c/N + plateau + exponent |dA/A| on every point, times the margin."""
     area = area or [0.0] * len(Ns)
-    return MARGIN * max(N * max(abs(e) - plateau - exponent * a, 0.0) for N, e, a in zip(Ns, errs, area))
+    return MARGIN * max(N * max(abs(e) - plateau - exponent * a, 0.0) for N, e, a in zip(Ns, errs, area, strict=True))
 
 
 def _corner_faces(rows):
@@ -105,8 +105,8 @@ def _corner_faces(rows):
         slope, F_inf = np.polyfit(1 / Ns[fit], np.array(F)[fit], 1)
         errs = [f / F_inf - 1 for f in F]
         c = max(c, _envelope(CORNER_NS, errs, GRIFFITH_FORCE_PLATEAU))
-        out[name] = {"limit": float(F_inf), "errors": dict(zip(map(str, CORNER_NS), errs))}
-        rows += [[f"F_A {name} (vs 1/N fit)", N, f"{e:+.5f}", "scaled", f"{N * e:+.3f}"] for N, e in zip(CORNER_NS, errs)]
+        out[name] = {"limit": float(F_inf), "errors": dict(zip(map(str, CORNER_NS), errs, strict=True))}
+        rows += [[f"F_A {name} (vs 1/N fit)", N, f"{e:+.5f}", "scaled", f"{N * e:+.3f}"] for N, e in zip(CORNER_NS, errs, strict=True)]
     return c, out
 
 
@@ -128,7 +128,7 @@ def griffith():
         stiff[name] = errs
         k = getattr(sc.material, "exponent", 0.0)
         c_K = max(c_K, _envelope(STIFFNESS_NS, errs, area=area, exponent=(1 + k) / 2))
-        rows += [[f"K {name}", N, f"{e:+.5f}", f"{a:.5f}", f"{N * e:+.3f}"] for N, e, a in zip(STIFFNESS_NS, errs, area)]
+        rows += [[f"K {name}", N, f"{e:+.5f}", f"{a:.5f}", f"{N * e:+.3f}"] for N, e, a in zip(STIFFNESS_NS, errs, area, strict=True)]
     sc = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.0), cs.Adhesion(1.0))
     FK = T.kendall_adhesion_force(E_star=1.0, radius=1.0, work=1.0)
     dK = T.kendall_critical_approach(E_star=1.0, radius=1.0, work=1.0)
@@ -145,13 +145,13 @@ def griffith():
     print(_timing.table(rows, ["quantity", "N", "error", "|dA/A|", "N x error"]), flush=True)
     model = {
         "stiffness": {"c": c_K, "plateau": 0.0, "area_exponent": "(1+k)/2",
-                      "faces": {k: dict(zip(map(str, STIFFNESS_NS), v)) for k, v in stiff.items()}},
+                      "faces": {k: dict(zip(map(str, STIFFNESS_NS), v, strict=True)) for k, v in stiff.items()}},
         "pulloff_force": {"c": _envelope(FORCE_NS, F_err, GRIFFITH_FORCE_PLATEAU, F_area, 0.75),
                           "plateau": GRIFFITH_FORCE_PLATEAU, "area_exponent": "(3+k)/4",
-                          "faces": {"circle": dict(zip(map(str, FORCE_NS), F_err))}},
+                          "faces": {"circle": dict(zip(map(str, FORCE_NS), F_err, strict=True))}},
         "pulloff_approach": {"c": _envelope(FORCE_NS, d_err, GRIFFITH_FORCE_PLATEAU, F_area, 0.25),
                              "plateau": GRIFFITH_FORCE_PLATEAU, "area_exponent": "(1-k)/4",
-                             "faces": {"circle": dict(zip(map(str, FORCE_NS), d_err))}},
+                             "faces": {"circle": dict(zip(map(str, FORCE_NS), d_err, strict=True))}},
     }
     return model
 
@@ -170,10 +170,10 @@ def energy():
             errs.append(r.stiffness / K - 1)
         stiff[name] = errs
         c_K = max(c_K, _envelope(STIFFNESS_NS, errs, area=area, exponent=0.5))
-        rows += [[f"K {name}", N, f"{e:+.5f}", f"{a:.5f}", f"{N * e:+.3f}"] for N, e, a in zip(STIFFNESS_NS, errs, area)]
+        rows += [[f"K {name}", N, f"{e:+.5f}", f"{a:.5f}", f"{N * e:+.3f}"] for N, e, a in zip(STIFFNESS_NS, errs, area, strict=True)]
     print(_timing.table(rows, ["quantity", "N", "error", "|dA/A|", "N x error"]), flush=True)
     return {"stiffness": {"c": c_K, "plateau": 0.0, "area_exponent": "(1+k)/2",
-                          "faces": {k: dict(zip(map(str, STIFFNESS_NS), v)) for k, v in stiff.items()}}}
+                          "faces": {k: dict(zip(map(str, STIFFNESS_NS), v, strict=True)) for k, v in stiff.items()}}}
 
 
 def _exponents():
@@ -235,7 +235,8 @@ def write_docs() -> None:
              "(`bem_griffith/error_model.json`, `bem_energy/error_model.json`).  " + _timing.provenance(), "",
              "A result's bar on a quantity is `c / N + plateau + exponent |A_h / A - 1|`: N elements per "
              "equivalent radius, A_h the face's area on the grid.  `c` is the largest N x (|error| - the other "
-             f"terms) over the sweep, times {MARGIN:g}.  The FEM's bars are its own a-posteriori bounds and the "
+             f"terms) over the sweep from N = {FIT_FROM} on, times {MARGIN:g}; coarser grids use the same fit over the "
+             "whole sweep (`coarse_c` in the JSON).  The FEM's bars are its own a-posteriori bounds and the "
              "energy BEM's zero-range force bar is its extrapolation estimate (docs/accuracy.md).", ""]
     for pkg in ("bem_griffith", "bem_energy"):
         path = ROOT / pkg / "error_model.json"
