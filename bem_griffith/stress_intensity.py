@@ -140,7 +140,7 @@ class _Kernels:
         out = [np.empty((len(rows), m)) for m in exponent_counts]
         for first in range(0, len(rows), self.CHUNK):
             idx = centres[first:first + self.CHUNK, None] + offsets[None, :]
-            for n, (image, m) in enumerate(zip(padded, exponent_counts)):
+            for n, (image, m) in enumerate(zip(padded, exponent_counts, strict=True)):
                 out[n][first:first + self.CHUNK] = image[idx] @ self.monomials[:, :m]
         return out
 
