@@ -51,9 +51,12 @@ def _bar(quantity: str, N: float, area_defect: float, exponent: float, *, c: flo
                            f"({source or 'flat circle'}; benchmarks/study_error_models.py)", role)
 
 
-def error_bars(scene: Scene, *, spacing: float, face_area: float, graded_criterion: str) -> dict[str, ErrorBar]:
+def error_bars(scene: Scene, *, spacing: float, face_area: float, graded_criterion: str,
+               criterion: str = "paper") -> dict[str, ErrorBar]:
     """The bars of a solve of ``scene`` on a grid of element side ``spacing`` whose face has area
-    ``face_area``, with ``graded_criterion`` (``GriffithSettings.graded_criterion``)."""
+    ``face_area``, with ``graded_criterion`` and ``criterion`` (``GriffithSettings``).  The
+    pull-off bars are the paper criterion's (Eq. 22) model; another detachment criterion has
+    none until a study fits one (its stiffness, from the press, keeps its bar)."""
     shape, profile = scene.indenter.shape, scene.indenter.profile
     k = float(getattr(scene.material, "exponent", 0.0))
     N = shape.equivalent_radius / spacing
@@ -67,7 +70,7 @@ def error_bars(scene: Scene, *, spacing: float, face_area: float, graded_criteri
                                                                  "docs/accuracy.md)")
         return bars
     bars["stiffness"] = _bar("stiffness", N, defect, (1 + k) / 2, source="flat circle, square, graded circle")
-    if scene.adhesion.work_of_adhesion == 0:
+    if scene.adhesion.work_of_adhesion == 0 or criterion != "paper":
         return bars
     if k == 0:
         if circle:

@@ -116,5 +116,5 @@ def assemble_result(*, problem: Problem, scene: Scene, settings: GriffithSetting
         face_area=face_elements * problem.spacing**2,
         discretisation="grid",
         error_bars=error_bars(scene, spacing=problem.spacing, face_area=face_elements * problem.spacing**2,
-                              graded_criterion=settings.graded_criterion),
+                              graded_criterion=settings.graded_criterion, criterion=settings.criterion),
     )
