@@ -32,6 +32,7 @@ class _GriffithInfoBase(TypedDict):
     press_approach: float         # the approach the press reached
     cascades_cut: int             # cascades ended early by the Eq. 14 certainty bound
     windowed_solves: int          # contact-set solves on a smaller window of the grid
+    criterion: str                # the detachment rule: "paper" (Eq. 22) or "stress_intensity"
 
 
 class GriffithInfo(_GriffithInfoBase, total=False):
@@ -93,6 +94,7 @@ def assemble_result(*, problem: Problem, scene: Scene, settings: GriffithSetting
         "grid": list(problem.face.shape), "face_elements": face_elements,
         "critical_stress": problem.critical_stress, "press_approach": pressed_approach,
         "cascades_cut": counters.cascades_cut, "windowed_solves": counters.windowed_solves,
+        "criterion": settings.criterion,
         **graded_info,
     }
     return Result(
