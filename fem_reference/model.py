@@ -25,8 +25,17 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
-from skfem import (Basis, BilinearForm, ElementTriP1, ElementTriP2, ElementTriP3, ElementTriP4, ElementVector,
-                   MeshTri, asm)
+from skfem import (
+    Basis,
+    BilinearForm,
+    ElementTriP1,
+    ElementTriP2,
+    ElementTriP3,
+    ElementTriP4,
+    ElementVector,
+    MeshTri,
+    asm,
+)
 
 __all__ = ["KERNELS", "Material", "Model", "assemble", "bases", "build_mesh", "build_tensor_mesh", "global_matrix",
            "local_saddle_matrices", "nested_dissection", "saddle_matrix", "solve_unit_approach"]

@@ -29,8 +29,17 @@ from skfem import MeshTri
 from contact_scene import Circle, Curve, ErrorBar, Homogeneous, PowerLawGraded, Result, Scene, SceneError, SolverStats
 from contact_scene.errors import check_choice, check_int, check_real
 
-from .model import (KERNELS, Material, assemble, bases, build_mesh, build_tensor_mesh, local_saddle_matrices, saddle_matrix,
-                    solve_unit_approach)
+from .model import (
+    KERNELS,
+    Material,
+    assemble,
+    bases,
+    build_mesh,
+    build_tensor_mesh,
+    local_saddle_matrices,
+    saddle_matrix,
+    solve_unit_approach,
+)
 
 __all__ = ["FemSettings", "solve", "solve_with_resolution", "unit_solution", "UnitSolution"]
 
@@ -85,7 +94,8 @@ class FemSettings:
         check_choice("fem.kernels", self.kernels, KERNELS)
         object.__setattr__(self, "grading", check_real("fem.grading", self.grading, lo=0.05, hi=4.0))
         object.__setattr__(self, "order", check_int("fem.order", self.order, lo=2, hi=4))
-        object.__setattr__(self, "domain_radius", check_real("fem.domain_radius", self.domain_radius, lo=16.0, hi=2.0**40))
+        object.__setattr__(self, "domain_radius",
+                           check_real("fem.domain_radius", self.domain_radius, lo=16.0, hi=2.0**40))
         object.__setattr__(self, "h_min", check_real("fem.h_min", self.h_min, lo=1e-12, hi=0.1))
         object.__setattr__(self, "vce_radius", check_real("fem.vce_radius", self.vce_radius, lo=0.01, hi=0.5))
 
@@ -106,7 +116,7 @@ class UnitSolution:
     x: np.ndarray | None = None
 
 
-def write_fields(path: str, u: "UnitSolution", *, radius: float, approach: float, modulus_scale: float) -> None:
+def write_fields(path: str, u: UnitSolution, *, radius: float, approach: float, modulus_scale: float) -> None:
     """Displacement (u_r, u_z) and pressure at approach ``approach`` on the mesh vertices,
     in the scene's units (lengths scaled by the punch radius), written with meshio."""
     import meshio
@@ -150,8 +160,8 @@ def build(material: Material, settings: FemSettings) -> MeshTri:
     then 1e-2 off (nu = 0.3: 7.8e-5 at grading 2.5, 1.4e-2 at 3) and converges too slowly in
     the degree for the error estimate; hence grading <= 2 there."""
     if material.mapping == 1.0 and settings.grading > MAX_ISOTROPIC_GRADING:
-        raise SceneError("fem.grading", f"a homogeneous body's mesh needs grading <= {MAX_ISOTROPIC_GRADING:g} (coarser "
-                         f"ones leave the punch edge unresolved); got {settings.grading:g}")
+        raise SceneError("fem.grading", f"a homogeneous body's mesh needs grading <= {MAX_ISOTROPIC_GRADING:g} "
+                         f"(coarser ones leave the punch edge unresolved); got {settings.grading:g}")
     if material.mapping != 1.0:
         return build_tensor_mesh(domain=settings.domain_radius, ratio=1.0 + settings.grading, h_min=settings.h_min,
                                  mapping=material.mapping)
@@ -200,7 +210,8 @@ def unit_solution(material: Material, settings: FemSettings, *, energy_release: 
                         kernels=settings.kernels)
         minus = assemble(_moved(mesh, -delta, q), material, order=settings.order, face_radius=1 - delta,
                          kernels=settings.kernels)
-        xp, xm = solve_unit_approach(plus, kernels=settings.kernels), solve_unit_approach(minus, kernels=settings.kernels)
+        xp = solve_unit_approach(plus, kernels=settings.kernels)
+        xm = solve_unit_approach(minus, kernels=settings.kernels)
         dK_c = 2 * math.pi * (_energy(plus.M, xp) - _energy(minus.M, xm)) / (2 * delta)
         timings["compliance_check"] = time.perf_counter() - t3
     return UnitSolution(K, K_react, dK_vce, dK_c, model.M.shape[0], mesh.t.shape[1], timings, mesh, model, x)
@@ -313,7 +324,8 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
             msgs.append(f"energy release rate: stiffness and compliance derivatives differ by {agree:.2e}")
     if scene.outputs.fields:
         if not settings.fields_path:
-            raise SceneError("fem.fields_path", "the scene asks for fields: give FemSettings(fields_path=...) (.vtu or .xdmf)")
+            raise SceneError("fem.fields_path",
+                             "the scene asks for fields: give FemSettings(fields_path=...) (.vtu or .xdmf)")
         write_fields(settings.fields_path, u, radius=a, approach=d_c, modulus_scale=modulus_scale)
     curve = Curve(np.array([0.0, d_c, d_c]), np.array([0.0, -F_A, 0.0]), np.array([math.pi * a * a] * 2 + [0.0]))
     if callback is not None:
@@ -333,17 +345,20 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
         timings=timings,
         accuracy_estimate=max(est.values()),
         messages=tuple(msgs),
-        error_bars={q: ErrorBar(v, f"degree {settings.order} against {comparison_order(settings.order)} on the same mesh, "
-                                   f"scaled by the per-degree ratio, plus the truncation 1/{settings.domain_radius:g} "
+        error_bars={q: ErrorBar(v, f"degree {settings.order} against {comparison_order(settings.order)} on the same "
+                                   f"mesh, scaled by the per-degree ratio, plus the truncation "
+                                   f"1/{settings.domain_radius:g} "
                                    "(bounds the error on every tested case: tests/test_fem_reference.py)")
                     for q, v in est.items()},
         stats=SolverStats(linear_solves=2 + (u.dK_compliance is not None) * 2, unknowns=int(u.dofs)),
         face_area=None,
         discretisation="mesh",
-        info={"dofs": u.dofs, "elements": u.elements, "dK_da_vce": modulus_scale * u.dK_vce, "dK_da_compliance": None if u.dK_compliance is None else modulus_scale * u.dK_compliance,
-              "stiffness_reaction": modulus_scale * a * u.stiffness_reaction, "grading": settings.grading, "order": settings.order,
-              "error_estimates": est, "comparison_order": comparison_order(settings.order),
-              "comparison_stiffness": modulus_scale * a * comparison.stiffness, "comparison_dK_da": modulus_scale * comparison.dK_vce,
+        info={"dofs": u.dofs, "elements": u.elements, "dK_da_vce": modulus_scale * u.dK_vce,
+              "dK_da_compliance": None if u.dK_compliance is None else modulus_scale * u.dK_compliance,
+              "stiffness_reaction": modulus_scale * a * u.stiffness_reaction, "grading": settings.grading,
+              "order": settings.order, "error_estimates": est, "comparison_order": comparison_order(settings.order),
+              "comparison_stiffness": modulus_scale * a * comparison.stiffness,
+              "comparison_dK_da": modulus_scale * comparison.dK_vce,
               # continuum identities the discrete solution misses: K ~ a^(1+k) (so a K'/((1+k) K) = 1)
               # and the reaction equals the energy form; diagnostics, not error bounds
               "scaling_defect": abs(u.dK_vce / ((1 + mat.k) * u.stiffness) - 1),
