@@ -280,6 +280,10 @@ def nested_dissection(dofs: np.ndarray, mesh: MeshTri, *, pressure_from: int, le
     centroid = mesh.p[:, mesh.t].mean(axis=1)
     taken = np.zeros(n, dtype=bool)
     is_pressure = np.arange(n) >= pressure_from
+    # mark[d] == stamp: d belongs to an element of the current left half (a fresh stamp per
+    # trial cut, so the array is never cleared)
+    mark = np.zeros(n, dtype=np.int64)
+    stamp = 0
     out = []
     stack: list = [np.arange(mesh.t.shape[1])]
     while stack:
@@ -288,25 +292,30 @@ def nested_dissection(dofs: np.ndarray, mesh: MeshTri, *, pressure_from: int, le
             out.append(item[0])
             continue
         E = item
-        own = np.unique(dofs[:, E])
-        own = own[~taken[own]]
+        local = dofs[:, E]
         best = None
         if len(E) > leaf:
             for ax in (0, 1):
                 c = centroid[ax, E]
                 median = np.median(c)
-                lines = np.unique(mesh.p[ax, mesh.t[:, E]])
-                left = c < lines[np.argmin(np.abs(lines - median))]
+                vertices = mesh.p[ax, mesh.t[:, E]]
+                gap = np.abs(vertices - median)
+                left = c < vertices[gap == gap.min()].min()             # the mesh line nearest the median
                 if left.all() or not left.any():
                     left = c < median
                     if left.all() or not left.any():
                         continue
-                sep = np.intersect1d(np.unique(dofs[:, E[left]]), np.unique(dofs[:, E[~left]]), assume_unique=True)
+                stamp += 1
+                mark[local[:, left]] = stamp
+                right = local[:, ~left]
+                sep = np.unique(right[mark[right] == stamp])
                 sep = sep[~taken[sep]]
                 score = len(sep) * (1 + 2 * abs(left.mean() - 0.5))   # small and balanced
                 if best is None or score < best[0]:
                     best = (score, left, sep)
         if best is None:                                          # a leaf
+            own = np.unique(local)
+            own = own[~taken[own]]
             taken[own] = True
             out.append(own[np.argsort(is_pressure[own], kind="stable")])
             continue
