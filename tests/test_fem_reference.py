@@ -25,7 +25,8 @@ def errors(r, mat, radius, work):
     """Relative errors of K, F_A and d_c against Eqs. 1, 6, 4 (homogeneous) or 34, 39, 38."""
     if isinstance(mat, cs.Homogeneous):
         E = mat.effective_modulus
-        exact = (T.kendall_stiffness(E_star=E, radius=radius), T.kendall_adhesion_force(E_star=E, radius=radius, work=work),
+        exact = (T.kendall_stiffness(E_star=E, radius=radius),
+                 T.kendall_adhesion_force(E_star=E, radius=radius, work=work),
                  T.kendall_critical_approach(E_star=E, radius=radius, work=work))
     else:
         kw = dict(E0=mat.surface_modulus, c0=mat.reference_depth, k=mat.exponent, radius=radius)
@@ -122,8 +123,9 @@ def test_graded_stiffness_and_pulloff(k, tol):
     r = fr.solve(scene(mat, radius=0.8, work=0.2))
     K = T.graded_stiffness(E0=1.5, c0=2.0, k=k, radius=0.8)
     assert r.stiffness == pytest.approx(K, rel=tol)
-    assert r.pulloff_force == pytest.approx(T.graded_adhesion_force(E0=1.5, c0=2.0, k=k, radius=0.8, work=0.2), rel=tol)
-    assert r.pulloff_approach == pytest.approx(T.graded_critical_approach(E0=1.5, c0=2.0, k=k, radius=0.8, work=0.2), rel=tol)
+    kw = dict(E0=1.5, c0=2.0, k=k, radius=0.8, work=0.2)
+    assert r.pulloff_force == pytest.approx(T.graded_adhesion_force(**kw), rel=tol)
+    assert r.pulloff_approach == pytest.approx(T.graded_critical_approach(**kw), rel=tol)
     assert abs(r.stiffness / K - 1) <= r.accuracy_estimate
 
 
