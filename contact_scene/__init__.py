@@ -8,9 +8,26 @@ from .profiles import Cone, Flat, Paraboloid, Profile, Sphere
 from .raster import Raster, rasterise, rasterise_periodic
 from .result import QUANTITIES, Curve, ErrorBar, Result, Snapshot, SolverStats
 from .scene import Adhesion, Indenter, Loading, Outputs, Scene
-from .shapes import (Brush, Circle, Difference, Ellipse, ImageMask, Incircle, Polygon, PowerLawStar,
-                     Rectangle, RegularPolygon, Shape, Square, SquareWithFaults, Star, Transformed,
-                     Triangle, TwoCircles, Union)
+from .shapes import (
+    Brush,
+    Circle,
+    Difference,
+    Ellipse,
+    ImageMask,
+    Incircle,
+    Polygon,
+    PowerLawStar,
+    Rectangle,
+    RegularPolygon,
+    Shape,
+    Square,
+    SquareWithFaults,
+    Star,
+    Transformed,
+    Triangle,
+    TwoCircles,
+    Union,
+)
 
 __all__ = [
     "theory", "Grid", "SceneError", "load_scene", "scene_from_dict", "shape_from_dict", "summarise",

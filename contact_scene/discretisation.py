@@ -49,7 +49,12 @@ class Grid:
                                check_real("grid.elements_per_radius", self.elements_per_radius, lo=0, lo_open=True, hi=1e5))
 
     def spacing_for(self, shape: Shape) -> float:
-        h = self.spacing if self.spacing is not None else shape.equivalent_radius / self.elements_per_radius
+        if self.spacing is not None:
+            h = self.spacing
+        else:
+            assert self.elements_per_radius is not None      # __post_init__ requires one of the two
+            h = shape.equivalent_radius / self.elements_per_radius
         if self.periodic:
+            assert self.period is not None                   # __post_init__ requires it when periodic
             h = self.period / math.ceil(self.period / h * (1 - 1e-12))
         return h

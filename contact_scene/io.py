@@ -25,14 +25,14 @@ from __future__ import annotations
 
 import math
 import tomllib
+from collections.abc import Set as AbstractSet
 from pathlib import Path
 
-from . import theory
+from . import shapes, theory
 from .errors import SceneError, check_real
 from .materials import Homogeneous, PowerLawGraded
 from .profiles import Cone, Flat, Paraboloid, Sphere
 from .scene import Adhesion, Indenter, Loading, Outputs, Scene
-from . import shapes
 
 __all__ = ["load_scene", "scene_from_dict", "shape_from_dict", "summarise", "SHAPE_KEYS"]
 
@@ -59,7 +59,7 @@ _PROFILE_KEYS = {"profile", "profile_radius", "half_angle_deg"}
 _NATIVE_ROTATION = {"ellipse", "square", "rectangle", "regular_polygon", "star", "power_law_star"}
 
 
-def _check_keys(section: str, d: dict, allowed: set, required: set = frozenset()):
+def _check_keys(section: str, d: dict, allowed: AbstractSet[str], required: AbstractSet[str] = frozenset()):
     if not isinstance(d, dict):
         raise SceneError(section, f"must be a table (got {type(d).__name__})")
     for k in d:
@@ -288,7 +288,7 @@ def summarise(scene: Scene) -> dict:
                 out["kendall_stiffness"] = theory.kendall_stiffness(E_star=E, radius=shape.radius)
         elif isinstance(scene.indenter.profile, (Sphere, Paraboloid)):
             out["jkr_force"] = theory.jkr_pulloff_force(work=w, sphere_radius=scene.indenter.profile.radius)
-    else:
+    elif isinstance(material, PowerLawGraded):
         E0, c0, k = material.surface_modulus, material.reference_depth, material.exponent
         out["exponent"] = k
         out["poisson_ratio"] = material.poisson_ratio

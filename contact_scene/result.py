@@ -3,7 +3,9 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -149,7 +151,8 @@ class Result:
     timings: dict = field(default_factory=dict)
     accuracy_estimate: float | None = None
     messages: tuple[str, ...] = ()
-    info: dict = field(default_factory=dict)
+    # a Mapping, so that each method's TypedDict of diagnostics (GriffithInfo, EnergyInfo...) fits
+    info: Mapping[str, Any] = field(default_factory=dict)
     stats: SolverStats = field(default_factory=SolverStats)
     error_bars: dict = field(default_factory=dict)       # quantity -> ErrorBar
     face_area: float | None = None

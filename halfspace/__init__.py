@@ -5,8 +5,17 @@ the periodic image sum, the lattice symbol), a separately derived point-collocat
 
 Neither BEM imports the other; both take their discretisation of the half-space from here."""
 from .collocation import collocated_graded_influence, collocated_influence, square_lattice_zeta
-from .kernel import (MADELUNG_SQUARE, graded_influence, graded_square_integral, lattice_symbol, love_influence,
-                     love_influence_periodic, love_square_integral, padded_shape, point_kernel_transform)
+from .kernel import (
+    MADELUNG_SQUARE,
+    graded_influence,
+    graded_square_integral,
+    lattice_symbol,
+    love_influence,
+    love_influence_periodic,
+    love_square_integral,
+    padded_shape,
+    point_kernel_transform,
+)
 from .operator import HalfSpaceOperator, default_workers
 
 __all__ = ["love_square_integral", "love_influence", "love_influence_periodic", "padded_shape", "graded_square_integral",

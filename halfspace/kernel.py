@@ -75,8 +75,8 @@ def love_influence_periodic(n: int, spacing: float, E_star: float, *, images: in
     if images < 4 or images % 4:
         raise ValueError(f"images must be a multiple of 4, >= 4 (got {images})")
     L = n * spacing
-    o = np.arange(n)
-    o = np.where(o <= n // 2, o, o - n).astype(float) * spacing
+    idx = np.arange(n)
+    o = np.where(idx <= n // 2, idx, idx - n).astype(float) * spacing
     X, Y = np.meshgrid(o, o, indexing="ij")
     levels = (images // 4, images // 2, images)
     sums, total, done = [], np.zeros((n, n)), -1

@@ -1,7 +1,7 @@
 """The half-space operator u = C p as an FFT convolution."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.fft as sfft
@@ -33,6 +33,7 @@ class HalfSpaceOperator:
     shape: tuple[int, int]
     workers: int = 1
     periodic: bool = False      # circular convolution over the grid itself (kernel shape = grid shape)
+    _symbol: np.ndarray = field(init=False, repr=False)   # set once in __post_init__
 
     def __post_init__(self):
         nx, ny = self.shape
@@ -68,7 +69,7 @@ class HalfSpaceOperator:
         c = sfft.ifft(b, axis=0, workers=self.workers, overwrite_x=True)[:nx]
         return sfft.irfft(c, n=My, axis=1, workers=self.workers)[:, :ny]
 
-    def window(self, shape: tuple[int, int]) -> "HalfSpaceOperator":
+    def window(self, shape: tuple[int, int]) -> HalfSpaceOperator:
         """The same operator on a smaller grid (wx x wy cells, any wx <= nx, wy <= ny): its
         coefficients are this kernel's for the offsets such a grid has, on the smaller padded
         grid :func:`~halfspace.kernel.padded_shape` gives.  A contact set that fits into the

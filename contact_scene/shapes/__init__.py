@@ -21,7 +21,7 @@ from .composite import Difference, TwoCircles, Union
 from .conics import Circle, Ellipse
 from .faults import SquareWithFaults
 from .image import ImageMask
-from .polygons import PolygonalShape, Polygon, Rectangle, RegularPolygon, Square, Triangle
+from .polygons import Polygon, PolygonalShape, Rectangle, RegularPolygon, Square, Triangle
 from .stars import PowerLawStar, Star
 from .transformed import Transformed
 

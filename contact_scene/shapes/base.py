@@ -32,8 +32,11 @@ class Shape:
     """Base class: a closed, bounded planar region with positive area."""
 
     kind = "shape"
-    #: whether ``area`` is exact (closed form) or a fine numerical quadrature
-    area_is_exact = True
+
+    @property
+    def area_is_exact(self) -> bool:
+        """Whether ``area`` is exact (closed form) or a fine numerical quadrature."""
+        return True
 
     def __post_init__(self):
         check_fields(self)
@@ -96,18 +99,18 @@ class Shape:
 
     # -- transformations -------------------------------------------------
     # (Transformed is a Shape itself, so it is imported where it is used)
-    def rotated(self, angle_deg: float, about=None) -> "Shape":
+    def rotated(self, angle_deg: float, about=None) -> Shape:
         from .transformed import Transformed
         about = self.centroid if about is None else about
         return Transformed(self, rotation_deg=angle_deg, about=tuple(about))
 
-    def mirrored(self, about=None) -> "Shape":
+    def mirrored(self, about=None) -> Shape:
         """Reflection x -> -x about a vertical line through ``about`` (default: the centroid)."""
         from .transformed import Transformed
         about = self.centroid if about is None else about
         return Transformed(self, mirror=True, about=tuple(about))
 
-    def scaled(self, factor: float) -> "Shape":
+    def scaled(self, factor: float) -> Shape:
         from .transformed import Transformed
         return Transformed(self, scale=factor, about=(0.0, 0.0))
 

@@ -59,7 +59,7 @@ class Brush(Union):
         rng = np.random.default_rng(self.seed)
         mixed = self.layout == "mixed"
         radius, half_side = self.pillar_radius, self.side / 2
-        placed = []                                     # (x, y, half-width of the bounding box)
+        placed: list[tuple[float, float, float]] = []   # (x, y, half-width of the bounding box)
         for _ in range(_ATTEMPTS_PER_PILLAR * self.count):
             if len(placed) == self.count:
                 break

@@ -35,7 +35,8 @@ def _pairwise_disjoint(shapes) -> bool:
 def _weighted_centroid(areas, centroids) -> tuple[float, float]:
     areas = np.asarray(areas, float)
     centroids = np.asarray(centroids, float)
-    return tuple(map(float, (areas[:, None] * centroids).sum(0) / areas.sum()))
+    cx, cy = (areas[:, None] * centroids).sum(0) / areas.sum()
+    return float(cx), float(cy)
 
 
 @dataclass(frozen=True)
@@ -101,7 +102,8 @@ class Difference(Shape):
     """``base`` with ``cuts`` removed.  The area is exact when every cut is a convex polygon or
     circle inside a convex base and the cuts' bounding boxes are disjoint."""
 
-    base: Shape = None
+    # None only as the marker of a missing base, which _complete turns into a SceneError naming the field
+    base: Shape = None  # type: ignore[assignment]
     cuts: tuple = ()
     kind = "difference"
 

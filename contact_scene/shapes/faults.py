@@ -18,7 +18,7 @@ class SquareWithFaults(Difference):
     of the top edge, and ``line_cuts`` straight cuts of width ``cut_width`` running from the
     left edge inward by ``line_cut_length`` at evenly spaced heights."""
 
-    base: Shape = field(default=None, init=False, repr=False)
+    base: Shape = field(default=None, init=False, repr=False)  # type: ignore[assignment]  # built by _complete
     cuts: tuple = field(default=(), init=False, repr=False)
     side: float = real(1.0, gt=0)
     v_cut_depth: float = real(0.0, ge=0, lt=lambda face: face.side)

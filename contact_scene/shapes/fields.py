@@ -14,8 +14,9 @@ checked in declaration order, so the earlier one is already checked when the bou
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable
 from dataclasses import MISSING
-from typing import Any, Callable
+from typing import Any
 
 from ..errors import SceneError, check_choice, check_int, check_real
 

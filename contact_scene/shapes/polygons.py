@@ -47,7 +47,8 @@ class PolygonalShape(Shape):
     """A simple polygon given by ``vertices`` (counter-clockwise after validation)."""
 
     @property
-    def vertices(self) -> np.ndarray:  # pragma: no cover - abstract
+    def vertices(self) -> tuple | np.ndarray:  # pragma: no cover - abstract
+        """The corners as given (a field of Polygon and Triangle) or as computed from the parameters."""
         raise NotImplementedError
 
     @cached_property
@@ -61,7 +62,8 @@ class PolygonalShape(Shape):
         signed_area = shoelace_area(v)
         extent = np.ptp(v, axis=0).max()
         if abs(signed_area) <= 1e-12 * extent**2 or extent == 0:
-            raise SceneError("indenter.vertices", "the polygon is empty (zero area); give at least 3 non-collinear vertices")
+            raise SceneError("indenter.vertices",
+                             "the polygon is empty (zero area); give at least 3 non-collinear vertices")
         return v[::-1].copy() if signed_area < 0 else v
 
     @staticmethod
@@ -120,7 +122,7 @@ class PolygonalShape(Shape):
         inside = np.zeros(len(xs), bool)
         tol = self.tolerance
         v = self._verts
-        for (x0, y0), (x1, y1) in zip(v, np.roll(v, -1, axis=0)):
+        for (x0, y0), (x1, y1) in zip(v, np.roll(v, -1, axis=0), strict=True):
             i0 = np.searchsorted(ys, min(y0, y1) - tol, "left")
             i1 = np.searchsorted(ys, max(y0, y1) + tol, "right")
             if i1 <= i0:
@@ -147,7 +149,7 @@ class PolygonalShape(Shape):
         y = np.asarray(y, float)
         v = self._verts
         d = np.full(np.broadcast(x, y).shape, np.inf)
-        for (x0, y0), (x1, y1) in zip(v, np.roll(v, -1, axis=0)):
+        for (x0, y0), (x1, y1) in zip(v, np.roll(v, -1, axis=0), strict=True):
             ex, ey = x1 - x0, y1 - y0
             t = np.clip(((x - x0) * ex + (y - y0) * ey) / (ex * ex + ey * ey), 0, 1)
             d = np.minimum(d, np.hypot(x - (x0 + t * ex), y - (y0 + t * ey)))
@@ -162,13 +164,14 @@ class PolygonalShape(Shape):
             A = np.column_stack([normals, np.ones(len(normals))])
             b = np.einsum("ij,ij->i", normals, v)
             res = optimize.linprog([0, 0, -1], A_ub=A, b_ub=b, bounds=[(None, None)] * 3, method="highs")
-            cx, cy, r = res.x
-            return Incircle(float(r), (float(cx), float(cy)))
+            if res.x is not None:   # the LP of a convex polygon is feasible; else the search below
+                cx, cy, r = res.x
+                return Incircle(float(r), (float(cx), float(cy)))
         # non-convex: best point of a sampling grid, polished on the exact distance
         X, Y, _ = numerical.fine_grid(self, 200)
         depth = -self.signed_distance(X, Y)
         i = np.unravel_index(np.argmax(depth), depth.shape)
-        res = optimize.minimize(
+        res = optimize.minimize(  # type: ignore[call-overload]  # scipy-stubs' options TypedDict lacks fatol
             lambda c: float(self.signed_distance(c[0], c[1])), [X[i], Y[i]],
             method="Nelder-Mead", options={"xatol": 1e-12 * self.size, "fatol": 1e-14 * self.size},
         )
@@ -204,7 +207,7 @@ class Polygon(PolygonalShape):
         except (TypeError, ValueError):
             raise SceneError("indenter.vertices", "must be a list of [x, y] number pairs") from None
         object.__setattr__(self, "vertices", verts)
-        self._verts  # validate now
+        self._verts  # noqa: B018  (the property validates the vertices now, at construction)
 
 
 @dataclass(frozen=True)
@@ -269,10 +272,10 @@ class Triangle(PolygonalShape):
         if len(self.vertices) != 3:
             raise SceneError("indenter.vertices", f"a triangle needs exactly 3 vertices (got {len(self.vertices)})")
         object.__setattr__(self, "vertices", Polygon(self.vertices).vertices)
-        self._verts  # validate now
+        self._verts  # noqa: B018  (the property validates the vertices now, at construction)
 
     @classmethod
-    def equilateral(cls, side: float, rotation_deg: float = 0.0, center=(0.0, 0.0)) -> "Triangle":
+    def equilateral(cls, side: float, rotation_deg: float = 0.0, center=(0.0, 0.0)) -> Triangle:
         side = check_real("indenter.side", side, lo=0, lo_open=True)
         circumradius = side / math.sqrt(3)
         t = np.radians(90 + np.array([0, 120, 240]))

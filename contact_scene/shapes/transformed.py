@@ -18,7 +18,7 @@ class Transformed(Shape):
     """A shape rotated (counter-clockwise, degrees), mirrored (x -> -x, before rotating) and
     scaled about the point ``about``."""
 
-    shape: Shape = None
+    shape: Shape
     rotation_deg: float = 0.0
     mirror: bool = False
     scale: float = real(1.0, gt=0, name="scale")
