@@ -54,7 +54,7 @@ def provenance() -> str:
             cpu = next((line.split(":", 1)[1].strip() for line in f if line.startswith("model name")), cpu)
     except OSError:
         pass
-    return (f"Generated {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC on {cpu}, "
+    return (f"Generated {datetime.datetime.now(datetime.UTC):%Y-%m-%d %H:%M} UTC on {cpu}, "
             f"{os.cpu_count()} cores, Python {platform.python_version()}, numpy {numpy.__version__}, "
             f"scipy {scipy.__version__}, commit {commit}; thread counts: OPENBLAS/OMP/MKL "
             f"{os.environ.get('OPENBLAS_NUM_THREADS')}/{os.environ.get('OMP_NUM_THREADS')}/"

@@ -16,10 +16,9 @@ import math
 import sys
 import time
 
+import _timing  # noqa: F401  (thread settings)
 import numpy as np
 import scipy.fft as sfft
-
-import _timing  # noqa: F401  (thread settings)
 from _timing import median_time, table
 
 import bem_energy as be
@@ -49,7 +48,7 @@ def minimisers():
         ref = ref or r.pulloff_force
         rows.append((name, f"{dt:.2f}", f"{dt / pair:.0f}", r.iterations, r.info["evaluations"],
                      r.info["minimisations"], f"{r.pulloff_force:.8f}", f"{r.pulloff_force / ref - 1:+.1e}"))
-    print("1. circle pull-off, l_c = 0.16 a, 32 per radius (padded %s)" % (r.info["padded_grid"],))
+    print(f"1. circle pull-off, l_c = 0.16 a, 32 per radius (padded {r.info['padded_grid']})")
     print(table(rows, ("minimiser", "wall s", "FFT pairs", "iterations", "evaluations", "minimisations", "F_A",
                        "vs pk")))
 

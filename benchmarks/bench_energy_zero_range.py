@@ -27,7 +27,7 @@ import subprocess
 import sys
 import tempfile
 import time
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 from pathlib import Path
 
 import _timing  # noqa: F401  (thread settings)
@@ -92,7 +92,7 @@ def main(argv=None):
                     help="keep the other faces already in --json (each face keeps its own date and load)")
     args = ap.parse_args(argv)
     faces = [f.strip() for f in args.faces.split(",") if f.strip()]
-    started = datetime.now(timezone.utc)
+    started = datetime.now(UTC)
     load = os.getloadavg()
     rows, records = [], {}
     with tempfile.TemporaryDirectory() as tmp:
@@ -113,12 +113,12 @@ def main(argv=None):
             t_old, t_new = statistics.median(times["old"]), statistics.median(times["new"])
             f_old = old.info["zero_range"]["pulloff_forces"]
             f_new = new.info["zero_range"]["pulloff_forces"]
-            worst_range = max(abs(b / a - 1) for a, b in zip(f_old, f_new))
+            worst_range = max(abs(b / a - 1) for a, b in zip(f_old, f_new, strict=True))
             change = new.pulloff_force / old.pulloff_force - 1
             rows.append((name, f"{t_old:.1f}", f"{t_new:.1f}", f"{t_old / t_new:.2f}",
                          f"{old.pulloff_force / F_up:.5f}", f"{new.pulloff_force / F_up:.5f}", f"{change:+.1e}",
                          f"{abs(change) / new.accuracy_estimate:.3f}", f"{worst_range:.1e}"))
-            records[name] = {"date": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+            records[name] = {"date": datetime.now(UTC).isoformat(timespec="seconds"),
                              "load_average_at_start": face_load,
                              "sequence": "coarse" if args.quick else "default", "old_s": times["old"], "new_s": times["new"], "ratio": t_old / t_new,
                              "F_old": old.pulloff_force, "F_new": new.pulloff_force, "F_upper": F_up,

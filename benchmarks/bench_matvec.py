@@ -31,10 +31,14 @@ def main(sizes=(64, 130, 258, 514)):
             buf[:n, :n] = p
             return sfft.irfft2(sfft.rfft2(buf, workers=workers) * khat, s=P, workers=workers)[:n, :n]
 
-        ours = lambda: op.convolve(p)
+        def ours():
+            return op.convolve(p)
+
         p32 = p.astype(np.float32)
         s32 = op.symbol.astype(np.float32)
-        ours32 = lambda: op.convolve(p32, s32)
+        def ours32():
+            return op.convolve(p32, s32)
+
         assert np.allclose(ours(), bare(), rtol=1e-12, atol=1e-12 * np.abs(bare()).max())
         tb = _timing.median_time(bare)
         to = _timing.median_time(ours)

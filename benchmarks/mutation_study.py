@@ -206,7 +206,7 @@ _print_lock = threading.Lock()
 
 def log(msg: str) -> None:
     with _print_lock:
-        print(f"[{datetime.datetime.now(datetime.timezone.utc):%H:%M:%S}] {msg}", flush=True)
+        print(f"[{datetime.datetime.now(datetime.UTC):%H:%M:%S}] {msg}", flush=True)
 
 
 def _env(copy: Path) -> dict:
@@ -528,7 +528,7 @@ def main(argv=None) -> None:
             raise SystemExit(f"{m.id}: {m.file} holds the old text {text.count(m.old)} times, expected {m.count}")
     commit = subprocess.run(["git", "-C", str(args.base), "log", "-1", "--format=%h (%cs)"], capture_output=True,
                             text=True).stdout.strip()
-    meta = {"date": f"{datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC",
+    meta = {"date": f"{datetime.datetime.now(datetime.UTC):%Y-%m-%d %H:%M} UTC",
             "machine": f"{platform.node()}, {platform.processor() or platform.machine()}, {os.cpu_count()} cores "
                        f"(shared), Python {platform.python_version()}",
             "commit": commit, "command": "python benchmarks/mutation_study.py " + " ".join(sys.argv[1:] if argv is None else argv),

@@ -62,14 +62,14 @@ def zero_range(ratios, epz=2.0):
     print(table(rows, ("l_c/a", "N/radius", "F/F_K", "(1-F/F_K)/sqrt", "converged", "wall s")))
     import numpy as np
 
-    l = np.array([x[0] for x in data])
+    lc = np.array([x[0] for x in data])
     F = np.array([x[1] for x in data])
     out = []
-    for k in range(len(l) - 1):
-        for j in range(k + 2, len(l) + 1):
-            F0, _, est = be.richardson(l[k:j], F[k:j], rate=0.5)
-            free = be.richardson(l[k:j], F[k:j])[1] if j - k >= 3 else None
-            out.append((",".join(f"{x:g}" for x in l[k:j]), f"{F0 / FK - 1:+.3%}", f"{est / F0:.2%}",
+    for k in range(len(lc) - 1):
+        for j in range(k + 2, len(lc) + 1):
+            F0, _, est = be.richardson(lc[k:j], F[k:j], rate=0.5)
+            free = be.richardson(lc[k:j], F[k:j])[1] if j - k >= 3 else None
+            out.append((",".join(f"{x:g}" for x in lc[k:j]), f"{F0 / FK - 1:+.3%}", f"{est / F0:.2%}",
                         "-" if free is None else f"{free:.2f}"))
     print("\nRichardson (rate 1/2, least squares) over consecutive ratios")
     print(table(out, ("ratios", "F0/F_K - 1", "estimate", "free rate")))

@@ -93,12 +93,12 @@ def finite_ranges(name, ratios, epz=2.0, min_per_radius=24.0, record=None):
     return np.array(ratios), np.array(scaled)
 
 
-def extrapolations(name, l, F):
+def extrapolations(name, lc, F):
     rows = []
-    for j in range(len(l) - 3):
-        F0, p, est = be.richardson(l[j:j + 4], F[j:j + 4])
-        F2 = be.richardson(l[j:j + 4], F[j:j + 4], rate=0.5)[0]
-        rows.append([",".join(f"{x:g}" for x in l[j:j + 4]), f"{F0:.4f}", "-" if p is None else f"{p:.2f}",
+    for j in range(len(lc) - 3):
+        F0, p, est = be.richardson(lc[j:j + 4], F[j:j + 4])
+        F2 = be.richardson(lc[j:j + 4], F[j:j + 4], rate=0.5)[0]
+        rows.append([",".join(f"{x:g}" for x in lc[j:j + 4]), f"{F0:.4f}", "-" if p is None else f"{p:.2f}",
                      f"{est / F0:.2%}", f"{F2:.4f}"])
     print(f"{name}: extrapolated F_A / F_upper over windows of four ranges")
     print(table(rows, ("ratios", "fitted rate", "rate", "estimate", "sqrt law")), flush=True)
@@ -162,12 +162,12 @@ if __name__ == "__main__":
     command = "python benchmarks/study_energy_zero_range.py " + " ".join(shlex.quote(x) for x in sys.argv[1:])
     for name in args.faces.split(","):
         rec = {} if args.json else None
-        l, F = finite_ranges(name, ratios, epz=args.epz, record=rec)
+        lc, F = finite_ranges(name, ratios, epz=args.epz, record=rec)
         if args.json:
             rec.update({"command": command, "python": platform.python_version(), "git_commit": _git_commit()})
             store(args.json, f"{name}-epz{args.epz:g}", rec)
-        if len(l) >= 4:
-            extrapolations(name, l, F)
+        if len(lc) >= 4:
+            extrapolations(name, lc, F)
     if args.no_griffith:
         sys.exit(0)
     for name in ("square", "triangle"):

@@ -24,6 +24,7 @@ import math
 import sys
 
 import _timing  # noqa: F401
+
 import bem_energy as be
 import bem_griffith as bg
 import contact_scene as cs

@@ -69,7 +69,11 @@ def fit(Ns, rho, p):
     return coef, float(np.abs(A @ coef - rho).max())
 
 
-def main(ks=tuple(k for k in sorted(CIRCLE_RATIO) if k != 0), Ns=(32, 45, 64, 90, 128, 181)):
+# the graded exponents the criterion has a stored circle ratio for
+GRADED_EXPONENTS = tuple(k for k in sorted(CIRCLE_RATIO) if k != 0)
+
+
+def main(ks=GRADED_EXPONENTS, Ns=(32, 45, 64, 90, 128, 181)):
     eq42 = lambda N: bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N), graded_criterion="eq42")  # noqa: E731
     base, rows = {}, []
     for N in Ns:

@@ -68,8 +68,8 @@ def contact_map(ax, snapshot, face=None, *, scale: float = 1.0, unit: str = "", 
 
 def contact_handles(extra=()):
     """Legend entries for the grey/black code of the contact maps (plus ``extra`` handles)."""
-    from matplotlib.patches import Patch
     import matplotlib.pyplot as plt
+    from matplotlib.patches import Patch
 
     cmap = plt.get_cmap("Greys")
     return [Patch(facecolor=cmap(FACE_GREY), edgecolor="0.5", lw=0.5, label="face, detached"),

@@ -18,7 +18,6 @@ The short version runs 12 elements per radius, the full version 64::
 """
 from __future__ import annotations
 
-
 import contact_scene as cs
 from contact_scene import theory as T
 
@@ -76,7 +75,7 @@ def plot(out: dict, path=None, *, resolution: float = 64):
     ax.set_title(f"Convex faces pulled off (Griffith BEM, {resolution:g} elements per radius)", fontsize=10)
     # the faces, to scale, in an inset
     ins = ax.inset_axes([0.75, 0.14, 0.22, 0.28])
-    for (name, o), colour in zip(out.items(), plt.rcParams["axes.prop_cycle"].by_key()["color"]):
+    for name, colour in zip(out, plt.rcParams["axes.prop_cycle"].by_key()["color"], strict=False):
         v = _outline(SHAPES[name])
         ins.fill(v[:, 0], v[:, 1], fill=False, ec=colour, lw=1.2)
     ins.set_aspect("equal")

@@ -62,7 +62,7 @@ def plot(out: dict, path=None):
     nrows = -(-(len(out) + 1) // ncols)
     fig, axs = plt.subplots(nrows, ncols, figsize=(4.0 * ncols, 3.9 * nrows), layout="constrained")
     axs = axs.ravel()
-    for ax, (name, o) in zip(axs[1:], out.items()):
+    for ax, (name, o) in zip(axs[1:], out.items(), strict=False):
         r = o["result"]
         face = cs.rasterise(cs.SquareWithFaults(side=1.0, **FAULTS[name]), r.grid_spacing).mask
         _gallery.contact_map(ax, r.last_stable, face,

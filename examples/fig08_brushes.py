@@ -81,7 +81,7 @@ def plot(out: dict, path=None):
     b = out["brushes"]
     fig, axs = plt.subplots(1, 4, figsize=(15, 4.0), layout="constrained",
                             gridspec_kw={"width_ratios": [1, 1, 1, 1.25]})
-    for ax, name in zip(axs[:3], ("regular r=.05 p=.2", "random 45 r=.05", "mixed 30 r<=.07")):
+    for ax, name in zip(axs[:3], ("regular r=.05 p=.2", "random 45 r=.05", "mixed 30 r<=.07"), strict=False):
         res = b[name]["result"]
         _gallery.contact_map(ax, res.last_stable, cs.rasterise(BRUSHES[name], res.grid_spacing).mask,
                              title=f"{name}: last stable\nphi = {b[name]['phi']:.3f}  (square side L = 1)")

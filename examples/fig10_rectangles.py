@@ -82,7 +82,7 @@ def plot(outs: dict, path=None):
     heights = [min(2.2, 8.0 / ar) for ar in out] + [8.0 * 1.7 / 10]
     fig, axs = plt.subplots(len(heights), 1, figsize=(8.8, sum(heights) + 0.75 * len(heights)),
                             layout="constrained", gridspec_kw={"height_ratios": heights})
-    for ax, (ar, o) in zip(axs, out.items()):
+    for ax, (ar, o) in zip(axs, out.items(), strict=False):
         r = o["result"]
         _gallery.contact_map(ax, r.last_stable, cs.rasterise(cs.Rectangle(float(ar), 1.0), r.grid_spacing).mask,
                              title=f"{ar}:1 rectangle: last stable contact keeps {o['last_stable_fraction']:.2f} of the "

@@ -55,7 +55,7 @@ def plot(out: dict, path=None):
 
     fig, axs = plt.subplots(1, 3, figsize=(13, 4.3), layout="constrained", gridspec_kw={"width_ratios": [1.3, 1, 1]})
     colours = plt.get_cmap("viridis")(np.linspace(0, 0.9, len(out)))
-    for (k, o), colour in zip(out.items(), colours):
+    for (k, o), colour in zip(out.items(), colours, strict=False):
         r = o["result"]
         axs[0].plot(r.curve.approach / abs(r.pulloff_approach), r.curve.force / r.pulloff_force, color=colour,
                     label=f"k = {k:g}: F_last / F_max = {o['last_force_over_max']:.2f}")
@@ -68,7 +68,7 @@ def plot(out: dict, path=None):
     axs[0].set_title("(a) force against approach, each curve scaled by its maximum", fontsize=9)
     axs[0].legend(fontsize=7, loc="lower right")
     shown = (0.5, -0.5) if {0.5, -0.5} <= set(out) else (max(out), min(out))
-    for ax, k, label in zip(axs[1:], shown, "bc"):
+    for ax, k, label in zip(axs[1:], shown, "bc", strict=False):
         r = out[k]["result"]
         ls = r.last_stable
         _gallery.contact_map(ax, ls, cs.rasterise(STAR, r.grid_spacing).mask,
