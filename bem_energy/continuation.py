@@ -97,8 +97,7 @@ def pull(eq: Equilibria, scene: Scene, path: LoadingPath, d0: float, m0: Minimum
     """Continue from the pressed state (d0, m0) through the scene's turning points to its pull
     limit (or until detached), in steps of ``step``, stopping at requested snapshot approaches;
     a snap-off is bracketed to ``snap_tolerance`` (an approach)."""
-    user_limit = scene.loading.pull_limit is not None
-    final = scene.loading.pull_limit if user_limit else -math.inf
+    final = scene.loading.pull_limit if scene.loading.pull_limit is not None else -math.inf
     targets = [*scene.loading.turning_points, final]
     wanted = sorted(set(scene.outputs.snapshots), reverse=True)
     fields = scene.outputs.fields
@@ -117,7 +116,7 @@ def pull(eq: Equilibria, scene: Scene, path: LoadingPath, d0: float, m0: Minimum
             if between:
                 d_next = between[0]
             # warm start: extrapolate along the branch (secant), then the minimiser projects
-            U0 = m.U if U_prev is None else m.U + (m.U - U_prev) * ((d_next - d) / (d - d_prev))
+            U0 = m.U if U_prev is None or d_prev is None else m.U + (m.U - U_prev) * ((d_next - d) / (d - d_prev))
             m_new = eq.pulling_trial(U0, d_next, adhesive) if attached and sign < 0 else eq.minimum(U0, d_next, adhesive)
             now = eq.attached(m_new, d_next, adhesive)
             if attached and not now and sign < 0:

@@ -141,8 +141,8 @@ def _projected_cg(prob, U0, d, adhesive, gtol, max_iterations, peel_fraction=Non
     E, G, P = prob.energy(U, d, adhesive)
     direction = None
     Gf_previous = None
-    zg_previous = None
-    fixed_previous = None
+    zg_previous = 0.0                    # no previous step: the first direction is steepest descent
+    fixed_previous = np.zeros(0, bool)
     evals = 1
     potential = prob.potential if adhesive else None
     most_in_contact = 0
@@ -182,7 +182,7 @@ def _projected_cg(prob, U0, d, adhesive, gtol, max_iterations, peel_fraction=Non
         # Newton step on the local quadratic model; where the adhesion makes the model concave along
         # the direction, the elastic curvature alone sets a first trial (backtracking follows)
         alpha = -gs / (prob.cell * (curvature if curvature > 0 else elastic_curvature))
-        for halvings in range(60):
+        for halvings in range(60):  # noqa: B007  (the count is read after the loop)
             Un = U + alpha * direction
             clipped = Un[face] < wall
             if clipped.any():
@@ -291,7 +291,7 @@ def _solves_qp(H, g, lower, s, active) -> bool:
     return bool(np.all(s[~active] >= lower[~active] - tol) and np.all((H @ s + g)[active] >= -tol))
 
 
-_FACE_QPS: "weakref.WeakKeyDictionary[EnergyProblem, _FaceQP]" = weakref.WeakKeyDictionary()
+_FACE_QPS: weakref.WeakKeyDictionary[EnergyProblem, _FaceQP] = weakref.WeakKeyDictionary()
 
 
 def _cvxpy(prob, U0, d, adhesive, gtol, max_iterations) -> Minimum:

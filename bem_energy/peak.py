@@ -70,7 +70,7 @@ def fold_vertex(points) -> tuple[float, float] | None:
     return float(gamma - beta**2 / (4 * alpha)), float(F_mean + F_span * xv)
 
 
-def locate_snap_off(eq: Equilibria, path: "LoadingPath", d_att: float, m_att: Minimum, d_det: float,
+def locate_snap_off(eq: Equilibria, path: LoadingPath, d_att: float, m_att: Minimum, d_det: float,
                     m_det: Minimum, adhesive: bool, *, tolerance: float, locate_detachment: bool = True) -> SnapOff:
     """Bisect between the attached state at ``d_att`` and the detached one at ``d_det`` until
     they are ``tolerance`` apart, every trial starting from the last attached state (a trial
@@ -93,16 +93,20 @@ def locate_snap_off(eq: Equilibria, path: "LoadingPath", d_att: float, m_att: Mi
     return SnapOff(float(d_att), m_att, float(d_det), m_det, fold_vertex(fold_points), len(path) - 1)
 
 
-def _refine_smooth_maximum(eq: Equilibria, path: "LoadingPath", tolerance: float) -> tuple[float, float]:
+def _refine_smooth_maximum(eq: Equilibria, path: LoadingPath, tolerance: float) -> tuple[float, float]:
     """Brent on F(d) between the neighbours of the largest recorded tension, each trial warm-
     started from that state: (F, d) at the minimum found.  The trials join the loading path in
     loading order, between those neighbours."""
     largest = path.largest
+    # force_maximum calls this only for a recorded state with neighbours on both sides
+    assert largest.U is not None and largest.before is not None and largest.after is not None
     lower_d, upper_d = sorted((largest.before, largest.after[0]))
     extra = []
 
+    start = largest.U
+
     def force_at(x):
-        m = eq.minimum(largest.U, x, True)
+        m = eq.minimum(start, x, True)
         F_x = eq.force(m)
         extra.append((float(x), F_x, eq.contact_area(m, x)))
         return F_x
@@ -117,7 +121,7 @@ def _refine_smooth_maximum(eq: Equilibria, path: "LoadingPath", tolerance: float
     return float(r.fun), float(r.x)
 
 
-def force_maximum(eq: Equilibria, path: "LoadingPath", snap: SnapOff | None, adhesive: bool, *,
+def force_maximum(eq: Equilibria, path: LoadingPath, snap: SnapOff | None, adhesive: bool, *,
                   tolerance: float) -> PullOffPoint:
     """The pull-off point of a finished loading path: the largest recorded tension, replaced
     by the fold's vertex when the tension grows up to the snap-off, or refined by Brent (to

@@ -12,8 +12,14 @@ import math
 from contact_scene import Grid, Homogeneous, Scene, SceneError, theory
 from contact_scene.materials import PowerLawGraded
 
-from .potentials import (PROCESS_ZONE_ELEMENTS, Potential, process_zone_exponent, process_zone_length,
-                         process_zone_modulus, range_for_process_zone)
+from .potentials import (
+    PROCESS_ZONE_ELEMENTS,
+    Potential,
+    process_zone_exponent,
+    process_zone_length,
+    process_zone_modulus,
+    range_for_process_zone,
+)
 from .problem import EnergyProblem
 
 __all__ = ["default_potential", "unresolved_process_zone", "finite_range_grid", "critical_approach_scale",

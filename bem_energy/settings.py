@@ -121,7 +121,7 @@ class ZeroRangeSettings:
     energy: EnergySettings = field(default_factory=sequence_energy_settings)
 
     @classmethod
-    def coarse(cls, elements_per_process_zone: float = 1.0, **kw) -> "ZeroRangeSettings":
+    def coarse(cls, elements_per_process_zone: float = 1.0, **kw) -> ZeroRangeSettings:
         """The cheap sequence the harness sweeps (seconds, not minutes): l_c / a = 0.32 ... 0.04
         with the rate fixed at 1/2, which the circle follows there (within 0.1 % of Kendall).
         Faces with corners converge faster than sqrt(l_c) below 0.04 a, so this sequence

@@ -19,13 +19,19 @@ from contact_scene import Curve, Result, Scene, SceneError
 
 from .continuation import LoadingPath, pull, snapshot
 from .equilibria import Equilibria
-from .peak import force_maximum
-from .press import initial_stiffness, press
-from .potentials import PROCESS_ZONE_ELEMENTS, Potential
-from .problem import build_problem
-from .resolution import (DEFAULT_ELEMENTS_PER_RADIUS, MAX_DEFAULT_SIDE, critical_approach_scale, default_potential,
-                         finite_range_grid, unresolved_process_zone)
 from .error_model import error_bars
+from .peak import force_maximum
+from .potentials import PROCESS_ZONE_ELEMENTS, Potential
+from .press import initial_stiffness, press
+from .problem import build_problem
+from .resolution import (
+    DEFAULT_ELEMENTS_PER_RADIUS,
+    MAX_DEFAULT_SIDE,
+    critical_approach_scale,
+    default_potential,
+    finite_range_grid,
+    unresolved_process_zone,
+)
 from .settings import EnergySettings
 
 __all__ = ["pull_off", "EnergyInfo", "default_potential", "unresolved_process_zone", "finite_range_grid",
@@ -86,7 +92,7 @@ def pull_off(scene: Scene, settings: EnergySettings, *, spacing: float | None = 
     if adhesive:
         m = eq.minimum(m.U, d0, True)
     path.record(d0, m)
-    rho = potential.range if adhesive else 0.0
+    rho = potential.range if potential is not None else 0.0
     # the length scale of the pull: the critical approach and the range with adhesion (a grid
     # spacing would swamp both when w is tiny), the element without
     pull_scale = approach_scale + rho if adhesive else prob.spacing
@@ -101,7 +107,7 @@ def pull_off(scene: Scene, settings: EnergySettings, *, spacing: float | None = 
     if outcome.attached and scene.loading.pull_limit is not None:
         msgs.append(f"still attached at the pull limit d = {scene.loading.pull_limit:g} (strong adhesion)")
     resolved = True
-    if adhesive:
+    if potential is not None:
         note = unresolved_process_zone(scene, prob, potential)
         if note:
             msgs.append(note)
@@ -112,10 +118,12 @@ def pull_off(scene: Scene, settings: EnergySettings, *, spacing: float | None = 
     info = EnergyInfo(minimiser=settings.minimiser, minimisations=eq.work.minimisations,
                       evaluations=eq.work.evaluations, grid=list(prob.n), padded_grid=list(prob.padded),
                       face_elements=face_elements, press_approach=float(d0), peak=peak.kind)
-    if adhesive:
-        info.update(range=potential.range, potential=potential.kind, process_zone=prob.process_zone,
-                    process_zone_per_element=prob.process_zone / prob.spacing,
-                    process_zone_elements_needed=PROCESS_ZONE_ELEMENTS[potential.kind][0])
+    if potential is not None:
+        info["range"] = potential.range
+        info["potential"] = potential.kind
+        info["process_zone"] = prob.process_zone
+        info["process_zone_per_element"] = prob.process_zone / prob.spacing
+        info["process_zone_elements_needed"] = PROCESS_ZONE_ELEMENTS[potential.kind][0]
     return Result(
         method="bem_energy",
         pulloff_force=peak.force,

@@ -13,14 +13,14 @@ import logging
 import math
 import time
 from dataclasses import fields, replace
-from typing import TypedDict
+from typing import TypedDict, cast
 
 import numpy as np
 
 from contact_scene import Circle, Grid, Result, Scene, SolverStats, rasterise, theory
 
-from .potentials import Potential, process_zone_exponent, process_zone_modulus, range_for_process_zone
 from .error_model import error_bars
+from .potentials import Potential, process_zone_exponent, process_zone_modulus, range_for_process_zone
 from .settings import ZeroRangeSettings
 from .solver import EnergyInfo, pull_off
 
@@ -118,7 +118,8 @@ def tail_bracket(h, F, rates: tuple[float, float] = RATE_BRACKET) -> tuple[float
     h, F = h[order], F[order]
     t = h[-2] / h[-1]
     step = F[-1] - F[-2]
-    return tuple(float(F[-1] + step / (t**q - 1.0)) for q in rates)
+    low, high = (float(F[-1] + step / (t**q - 1.0)) for q in rates)
+    return low, high
 
 
 def richardson(h: np.ndarray, F: np.ndarray, rate: float | None = None):
@@ -219,7 +220,7 @@ def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callb
         msgs.append(f"the sequence stops at l_c = {min(settings.ratios):g} a: faces with corners converge faster "
                     "than the circle below 0.04 a, and such a sequence overshoots their zero-range limit by up to "
                     "7 % (square, triangle: benchmarks/study_energy_zero_range.py); the default sequence reaches 0.01 a")
-    for lc, rho, res in runs:
+    for lc, _rho, res in runs:
         msgs.extend(f"[l_c/a = {lc / a:g}] {m}" for m in res.messages)
     ok = all(x[2].converged and x[2].detached for x in runs) and math.isfinite(F0) and F0 > 0
     if not (math.isfinite(F0) and F0 > 0):
@@ -231,6 +232,7 @@ def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callb
         for phase, v in res.timings.items():
             timings[phase] = timings.get(phase, 0.0) + v
     timings["extrapolation"] = max(0.0, (t1 - t0) - sum(timings.values()))
+    assert finest.face_area is not None      # pull_off reports its grid's face area
     return replace(
         finest,
         pulloff_force=float(F0),
@@ -239,7 +241,8 @@ def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callb
         iterations=sum(x[2].iterations for x in runs),
         timings=timings,
         messages=tuple(msgs),
-        info=ZeroRangeInfo(**finest.info, zero_range=SequenceInfo(
+        # finest comes from pull_off, whose info is an EnergyInfo
+        info=ZeroRangeInfo(**cast(EnergyInfo, finest.info), zero_range=SequenceInfo(
             process_zone_ratios=[float(r) for r in settings.ratios],
             ranges=[float(x[1]) for x in runs],
             spacings=[float(x[2].grid_spacing) for x in runs],

@@ -101,7 +101,7 @@ def solve_contact_set(problem: Problem, contact: np.ndarray, settings: GriffithS
             counters.operator_applications += 1
             return operator.apply_symbol(residual, contact_in_window, inverse)
 
-    def initial_guess(pressures_on_previous_set: np.ndarray | None):
+    def initial_guess(pressures_on_previous_set: np.ndarray | None) -> np.ndarray | None:
         if warm_start is None or not warm_start.contact.any():
             return None
         full = np.zeros(problem.face.shape)
@@ -110,21 +110,24 @@ def solve_contact_set(problem: Problem, contact: np.ndarray, settings: GriffithS
 
     def image_on_grid(cg: CGResult) -> np.ndarray:
         if window is None:
+            assert cg.image is not None      # CG is restricted to the contact set, so it returns C x
             return cg.image
         # the gaps of the whole face need C x beyond the window: one operator application
         counters.operator_applications += 1
         return problem.operator.apply_masked(cg.x, contact)
 
     n = int(contact.sum())
-    options = dict(rtol=settings.rtol, maxiter=settings.maxiter, precondition=precondition, restrict=contact_in_window)
-    unit = conjugate_gradient(apply_operator, np.ones(n),
-                              initial_guess(None if warm_start is None else warm_start.pressure_per_approach), **options)
+    def solve(rhs: np.ndarray, x0: np.ndarray | None) -> CGResult:
+        return conjugate_gradient(apply_operator, rhs, x0, rtol=settings.rtol, maxiter=settings.maxiter,
+                                  precondition=precondition, restrict=contact_in_window)
+
+    unit = solve(np.ones(n), initial_guess(None if warm_start is None else warm_start.pressure_per_approach))
     iterations, residual, converged = unit.iterations, unit.residual, unit.converged
     if problem.flat:
         profile_pressure, profile_displacement = np.zeros(n), np.zeros(problem.face.shape)
     else:
-        profile = conjugate_gradient(apply_operator, problem.height[contact],
-                                     initial_guess(None if warm_start is None else warm_start.profile_pressure), **options)
+        profile = solve(problem.height[contact],
+                        initial_guess(None if warm_start is None else warm_start.profile_pressure))
         profile_pressure, profile_displacement = profile.x, image_on_grid(profile)
         iterations += profile.iterations
         residual = max(residual, profile.residual)

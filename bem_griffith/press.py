@@ -66,6 +66,7 @@ def pressed_state(problem: Problem, scene: Scene, settings: GriffithSettings,
         return loading.press_approach, press_to_approach(problem, loading.press_approach, settings, counters)
     # press to a force: F(d) is continuous and increasing without adhesion; bracket, then Brent
     target = loading.press_force
+    assert target is not None      # Loading gives a press approach, a press force or neither (above)
     if target == 0.0:
         lowest = (problem.face.copy() if problem.flat
                   else problem.face & (problem.height <= problem.height[problem.face].min()))

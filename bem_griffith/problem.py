@@ -3,8 +3,8 @@ critical stress of the local Griffith criterion, fixed for the duration of a sol
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 
@@ -112,7 +112,11 @@ def build_problem(scene: Scene, settings: GriffithSettings) -> Problem:
         raise SceneError("grid.periodic", "the periodic half-space is implemented for homogeneous bodies only "
                          "(the graded kernel's image sum needs its own regularisation); use periodic = false")
     h = settings.grid.spacing_for(shape)
-    raster = rasterise_periodic(shape, h, settings.grid.period) if periodic else rasterise(shape, h)
+    if periodic:
+        assert settings.grid.period is not None      # Grid requires the period when periodic
+        raster = rasterise_periodic(shape, h, settings.grid.period)
+    else:
+        raster = rasterise(shape, h)
     nx, ny = raster.shape
     need = estimate_memory_gb(nx, ny) / (4 if periodic else 1)
     if periodic and nx > 1024:

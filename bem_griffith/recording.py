@@ -2,7 +2,7 @@
 for, and the caller's progress callback."""
 from __future__ import annotations
 
-from typing import Callable
+from collections.abc import Callable
 
 import numpy as np
 

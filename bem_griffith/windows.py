@@ -77,7 +77,7 @@ def window_length(n: int, extent: int) -> int:
     return min(n, (sfft.next_fast_len(2 * length - 1, real=True) + 1) // 2)
 
 
-def window_for(problem: "Problem", contact: np.ndarray) -> ContactWindow | None:
+def window_for(problem: Problem, contact: np.ndarray) -> ContactWindow | None:
     """A box of the grid holding ``contact`` whose padded FFTs are markedly cheaper than the
     whole face's (at most WINDOW_GAIN of its cells), or None (windows off, or no gain)."""
     if problem.windows is None:
@@ -94,7 +94,7 @@ def window_for(problem: "Problem", contact: np.ndarray) -> ContactWindow | None:
     def build():
         operator = problem.operator.window((wx, wy))
         inverse = (inverse_lattice_symbol(operator.padded_shape, problem.spacing, problem.point_kernel)
-                   if problem.inverse_symbol is not None else None)
+                   if problem.inverse_symbol is not None and problem.point_kernel is not None else None)
         return operator, inverse
 
     operator, inverse = problem.windows.get((wx, wy), build)
