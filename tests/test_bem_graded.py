@@ -4,13 +4,13 @@ import dataclasses
 
 import numpy as np
 import pytest
+from square_quadrature import square_integral_reference
 
 import bem_griffith as bg
 import contact_scene as cs
 from bem_griffith.criterion import CIRCLE_FIRST_ORDER, calibration
-from halfspace.kernel import graded_square_integral, love_square_integral
 from contact_scene import theory as T
-from square_quadrature import square_integral_reference
+from halfspace.kernel import graded_square_integral, love_square_integral
 
 
 @pytest.mark.parametrize("k", [-0.9, -0.5, 0.25, 0.75, 0.95])

@@ -6,18 +6,24 @@ prefactor 0.15 Delta/a covers the fitted 0.12 Delta/a of the same sweep.
 """
 import dataclasses
 import math
-import pathlib
 
 import numpy as np
 import pytest
+from square_quadrature import square_integral_reference
 
 import bem_griffith as bg
 import contact_scene as cs
-from halfspace.kernel import (graded_influence, lattice_symbol, love_influence, love_influence_periodic, love_square_integral,
-                                 padded_shape, point_kernel_transform)
 from contact_scene import theory as T
 from crossval.suite import SCENE_DIR
-from square_quadrature import square_integral_reference
+from halfspace.kernel import (
+    graded_influence,
+    lattice_symbol,
+    love_influence,
+    love_influence_periodic,
+    love_square_integral,
+    padded_shape,
+    point_kernel_transform,
+)
 
 E_STAR = 1.0
 

@@ -149,7 +149,7 @@ def test_fig03_jkr_curve_converges_and_orientation_does_not_matter():
     Ns = np.array(list(out["jkr"]))
     dev = np.array([o["mean_deviation"] for o in out["jkr"].values()])
     assert -np.polyfit(np.log(Ns), np.log(dev), 1)[0] >= 0.7          # at least first order toward JKR
-    for N, o in out["jkr"].items():
+    for o in out["jkr"].values():
         assert o["roundness"] <= 1 + o["spacing"] / 0.25              # round to one cell (contact radius > 0.25)
     assert area_normalised_spread(out["square"]) <= 0.5 / 24
 
@@ -223,7 +223,7 @@ def test_fig13_15_physical_units_show_the_papers_features():
 
     fig = plot(out)
     assert picture_problems(fig) == []
-    for ax, name in zip(fig.axes[3:6], out):
+    for ax, name in zip(fig.axes[3:6], out, strict=False):
         x0, x1, y0, y1 = ax.images[0].get_extent()
         fx0, fy0, fx1, fy1 = FACES[name][0].bounds
         h = out[name]["result"].grid_spacing

@@ -12,8 +12,7 @@ from scipy import ndimage
 import bem_griffith as bg
 import contact_scene as cs
 from bem_griffith import stress_intensity as si
-from contact_scene import SceneError
-from contact_scene import theory as T
+from contact_scene import SceneError, theory as T
 
 KENDALL = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
 
@@ -75,7 +74,7 @@ def test_fit_follows_the_varying_intensity_of_an_elliptical_front():
     # nearest point of the ellipse to each front cell centre, by dense sampling
     t = np.linspace(0, 2 * np.pi, 200001)
     ex, ey = a * np.cos(t), b * np.sin(t)
-    nearest = np.array([np.argmin((ex - u) ** 2 + (ey - v) ** 2) for u, v in zip(xs, ys)])
+    nearest = np.array([np.argmin((ex - u) ** 2 + (ey - v) ** 2) for u, v in zip(xs, ys, strict=True)])
     gradient = 2 * np.hypot(ex[nearest] / a**2, ey[nearest] / b**2)
     exact = p0 * np.sqrt(2 * np.pi / gradient)
     assert exact.max() / exact.min() > 1.3                         # the test sees K vary along the front

@@ -14,8 +14,8 @@ from scipy.sparse.linalg import LinearOperator, cg
 import bem_energy as be
 import contact_scene as cs
 import halfspace
-import halfspace.kernel as hk
 import halfspace.collocation as hc
+import halfspace.kernel as hk
 from contact_scene import theory as T
 from crossval.compare import compare
 from halfspace import HalfSpaceOperator, padded_shape

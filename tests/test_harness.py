@@ -1,7 +1,6 @@
 """Sweeps: serial, processes and dask give identical results; caching; report; regress; study."""
 import json
 import logging
-import subprocess
 import sys
 
 import numpy as np
@@ -26,12 +25,12 @@ def _same(a, b):
 def test_serial_processes_and_dask_are_identical():
     serial = run_jobs(JOBS)
     procs = run_jobs(JOBS, workers=2)
-    for a, b in zip(serial, procs):
+    for a, b in zip(serial, procs, strict=True):
         _same(a, b)
     distributed = pytest.importorskip("distributed")
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cl, \
             distributed.Client(cl) as client:
-        for a, b in zip(serial, run_jobs(JOBS, scheduler=client)):
+        for a, b in zip(serial, run_jobs(JOBS, scheduler=client), strict=True):
             _same(a, b)
 
 
@@ -41,7 +40,7 @@ def test_cache_is_reused_and_writes_are_atomic(tmp_path, monkeypatch):
     assert len(list((tmp_path / "c").glob("*.npz"))) == 2
     monkeypatch.setattr(runner, "_run", lambda job: pytest.fail("recomputed a cached result"))
     again = run_jobs(JOBS[:2], cache=ResultCache(tmp_path / "c"))
-    for a, b in zip(first, again):
+    for a, b in zip(first, again, strict=True):
         _same(a, b)
     # an interrupted write leaves the earlier entry whole and no temporary file
     key = ResultCache.key(JOBS[0].scene, JOBS[0].method, JOBS[0].resolution)
@@ -79,7 +78,7 @@ def test_cache_round_trip_keeps_every_field(tmp_path):
     assert back.accuracy_estimate == float("inf") and back.info["nested"] == {"t": (1, 2.5)}
     assert back.messages == res.messages and back.timings == res.timings
     assert len(back.snapshots) == len(res.snapshots) == 1
-    for a, b in zip(res.snapshots + (res.last_stable,), back.snapshots + (back.last_stable,)):
+    for a, b in zip(res.snapshots + (res.last_stable,), back.snapshots + (back.last_stable,), strict=True):
         assert a.contact.dtype == b.contact.dtype and np.array_equal(a.contact, b.contact)
         assert np.array_equal(a.pressure, b.pressure) and a.origin == b.origin
 
@@ -99,7 +98,6 @@ def test_damaged_cache_entry_is_a_miss_with_one_warning(tmp_path, monkeypatch, c
         ResultCache(tmp_path).put(other, first)
         path.write_bytes(cache.path(other).read_bytes())
     else:  # a pickle whose loading would run code: it must never be unpickled
-        import pickle
 
         class Evil:
             def __reduce__(self):
@@ -178,4 +176,4 @@ def test_full_report_includes_the_extreme_cases_table(tmp_path, monkeypatch):
     page = (tmp_path / "r" / "index.html").read_text()
     assert "Stiff and extreme cases" in page and "+2.58e-05" in page
     data = _strict_json((tmp_path / "r" / "results.json").read_text())
-    assert data["extremes"] == [dict(zip(ex.HEADERS, row))]
+    assert data["extremes"] == [dict(zip(ex.HEADERS, row, strict=True))]

@@ -5,7 +5,6 @@ floating point for every nu below (E = fl(1 - nu^2), then E / fl(1 - nu^2) = 1),
 difference comes from a solver that reads E or nu instead of E*; the mutant test shows the
 check catches one that uses E.
 """
-import pytest
 
 import bem_energy as be
 import bem_griffith as bg

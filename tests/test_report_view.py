@@ -11,7 +11,6 @@ import struct
 import subprocess
 import tempfile
 from html.parser import HTMLParser
-from pathlib import Path
 
 import matplotlib.image
 import numpy as np
@@ -234,7 +233,7 @@ def test_error_panel_labels_its_axes_and_its_legend_hides_no_point(times):
     from crossval.suite import SUITE
 
     ref = ErrorReference(1.0, "Kendall", "closed form")
-    rows = tuple(StudyRow("bem_griffith", n, t, 1 + e, e, e) for n, t, e in zip((8, 12, 16), times, (0.03, 0.02, 0.012)))
+    rows = tuple(StudyRow("bem_griffith", n, t, 1 + e, e, e) for n, t, e in zip((8, 12, 16), times, (0.03, 0.02, 0.012), strict=True))
     st = Study(SUITE["kendall_circle"], "pulloff_force", 1.0, ref.name, rows, reference_info=ref)
     fig, ax = plt.subplots(layout="constrained")
     plotting.plot_error_vs_time(st, ax)

@@ -1,5 +1,4 @@
 """Long studies, outside CI: ``pytest -m slow``."""
-from pathlib import Path
 
 import pytest
 

@@ -186,7 +186,10 @@ def test_filling_factor_relations():
     assert np.ptp(forces) < 1e-12 * forces[0]                              # Eq. 29
     assert forces[0] == pytest.approx(T.kendall_adhesion_force(E_star=E, radius=a0, work=W))
     b = 0.7
-    smooth = lambda a: 1.0 / (1.0 + (a / b) ** 2)
+
+    def smooth(a):
+        return 1.0 / (1.0 + (a / b) ** 2)
+
     assert T.filling_last_stable_radius(filling=smooth, radius_min=0.1, radius_max=2.0) == pytest.approx(b, rel=1e-7)  # Eq. 31
     assert T.filling_is_stable(radius=0.5, filling=smooth) and not T.filling_is_stable(radius=1.0, filling=smooth)
     # Eq. 27 is the stationary point of Eq. 25 in a

@@ -42,7 +42,7 @@ GRIFFITH_N = (48, 64, 96, 128)
 
 def _griffith_limits(values):
     """1/N extrapolations F(inf) = (N2 F2 - N1 F1) / (N2 - N1) through the pairs 48/96, 64/128, 96/128."""
-    F = dict(zip(GRIFFITH_N, values))
+    F = dict(zip(GRIFFITH_N, values, strict=True))
     return [(n2 * F[n2] - n1 * F[n1]) / (n2 - n1) for n1, n2 in ((48, 96), (64, 128), (96, 128))]
 
 
@@ -144,7 +144,7 @@ def test_the_circles_tail_rate_lies_in_the_bracket(seqs):
         h, F = np.array(s["ratios"]), np.array(s["area_scaled_over_upper"])
         q = tail_rates(h, F, 1.0)
         fine = h[1:] <= zr.VALIDATED_FINEST_RATIO + 1e-12
-        print(key, dict(zip(h[1:], q.round(3))))
+        print(key, dict(zip(h[1:], q.round(3), strict=False)))
         assert np.all((lo <= q[fine]) & (q[fine] <= hi)), (key, q)
 
 
