@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Literal, cast
 
 import numpy as np
 import scipy.sparse as sp
@@ -248,7 +249,7 @@ def saddle_matrix(mesh: MeshTri, mat: Material, *, order: int = 2, intorder: int
     A = asm(a, ub)
     B = asm(b, ub, pb)
     C = asm(c, pb)
-    return sp.bmat([[A, B.T], [B, -C]], format="csr"), ub, pb
+    return cast(sp.csr_matrix, sp.bmat([[A, B.T], [B, -C]], format="csr")), ub, pb
 
 
 def assemble(mesh: MeshTri, mat: Material, *, order: int = 2, intorder: int | None = None,
@@ -341,6 +342,7 @@ def solve_unit_approach(model: Model, M: sp.csr_matrix | None = None, *, kernels
         free = free[np.argsort(position[free], kind="stable")]
     rhs = -(M[free][:, model.fixed] @ x[model.fixed])
     A = M[free][:, free].tocsc()
+    attempts: list[tuple[Literal["COLAMD", "NATURAL"], float, bool]]
     if kernels == "vectorised":
         # the diagonal pivots of the nested-dissection order first (no fill from row swaps:
         # 1.8 s against 21 s with 1 % threshold pivoting on the graded mesh); a factorisation
@@ -359,7 +361,7 @@ def solve_unit_approach(model: Model, M: sp.csr_matrix | None = None, *, kernels
         except RuntimeError:                                      # an exactly zero pivot
             continue
         y = lu.solve(rhs)
-        residual = np.linalg.norm(A @ y - rhs) / np.linalg.norm(rhs)
+        residual = float(np.linalg.norm(A @ y - rhs) / np.linalg.norm(rhs))
         if residual < 1e-8:
             break
     else:

@@ -32,6 +32,7 @@ from contact_scene.errors import check_choice, check_int, check_real
 from .model import (
     KERNELS,
     Material,
+    Model,
     assemble,
     bases,
     build_mesh,
@@ -112,7 +113,7 @@ class UnitSolution:
     elements: int
     timings: dict
     mesh: MeshTri | None = None
-    model: object = None
+    model: Model | None = None
     x: np.ndarray | None = None
 
 
@@ -121,14 +122,16 @@ def write_fields(path: str, u: UnitSolution, *, radius: float, approach: float, 
     in the scene's units (lengths scaled by the punch radius), written with meshio."""
     import meshio
 
-    model, x = u.model, u.x
+    model, x, mesh = u.model, u.x, u.mesh
+    if model is None or x is None or mesh is None:
+        raise ValueError("write_fields needs a UnitSolution with its model, solution and mesh (energy_release=True)")
     nu_dofs = model.ub.N
     m = model.material.mapping
     ur = x[model.ub.nodal_dofs[0]] * approach
     uz = x[model.ub.nodal_dofs[1]] * approach
     p = x[nu_dofs + model.pb.nodal_dofs[0]] * approach * modulus_scale
-    pts = np.column_stack([u.mesh.p[0] * radius, (u.mesh.p[1] ** m) * radius])
-    meshio.write(path, meshio.Mesh(pts, [("triangle", u.mesh.t.T)],
+    pts = np.column_stack([mesh.p[0] * radius, (mesh.p[1] ** m) * radius])
+    meshio.write(path, meshio.Mesh(pts, [("triangle", mesh.t.T)],
                                    point_data={"u_r": ur, "u_z": uz, "pressure": p}))
 
 
@@ -275,7 +278,9 @@ def error_estimates(u: UnitSolution, mat: Material, settings: FemSettings) -> tu
 def _material(scene: Scene) -> tuple[Material, float]:
     """Dimensionless material and the modulus scale with K = scale a K^."""
     m = scene.material
-    a = scene.indenter.shape.radius
+    shape = scene.indenter.shape
+    assert isinstance(shape, Circle), "applies() admits circles only"
+    a = shape.radius
     if isinstance(m, Homogeneous):
         return Material(0.0, m.poisson_ratio), m.youngs_modulus
     if isinstance(m, PowerLawGraded):
@@ -303,7 +308,9 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
         raise SceneError("indenter.shape" if "circular" in why else "material.exponent", why)
     settings = settings or FemSettings()
     mat, modulus_scale = _material(scene)
-    a = scene.indenter.shape.radius
+    shape = scene.indenter.shape
+    assert isinstance(shape, Circle), "applies() admits circles only"
+    a = shape.radius
     w = scene.adhesion.work_of_adhesion
     u = unit_solution(mat, settings)
     K = modulus_scale * a * u.stiffness
