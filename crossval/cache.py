@@ -21,6 +21,7 @@ import tempfile
 import zipfile
 from importlib import metadata
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -156,7 +157,9 @@ class ResultCache:
         fd, tmp = tempfile.mkstemp(dir=self.directory, suffix=".tmp")
         try:
             with os.fdopen(fd, "wb") as f:
-                np.savez(f, __meta__=np.frombuffer(meta.encode(), dtype=np.uint8), **arrays)
+                # typed as Any: numpy's stub lets a str -> ndarray mapping reach savez's allow_pickle
+                payload: dict[str, Any] = {"__meta__": np.frombuffer(meta.encode(), dtype=np.uint8), **arrays}
+                np.savez(f, **payload)
             os.replace(tmp, self.path(key))
         except BaseException:
             Path(tmp).unlink(missing_ok=True)

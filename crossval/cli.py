@@ -54,7 +54,7 @@ class _LiveStatus:
         self.desc = desc
         self.every_s = every_s
         self._last = 0.0
-        self._handler = None
+        self._handler: logging.Handler | None = None
 
     def __enter__(self):
         from tqdm.contrib.logging import logging_redirect_tqdm

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import contact_scene as cs
 from contact_scene import theory as T
@@ -57,7 +58,8 @@ class Check:
         if not self.converged:
             return False
         if self.kind == "bounds":
-            return self.reference * (1 - self.tolerance) <= self.value <= self.upper * (1 + 1e-12)
+            upper = math.inf if self.upper is None else self.upper
+            return self.reference * (1 - self.tolerance) <= self.value <= upper * (1 + 1e-12)
         return abs(self.difference) <= self.tolerance
 
     @property
@@ -101,7 +103,7 @@ def reference_values(scene: cs.Scene) -> dict:
     """Closed-form values for the scene where the sheet has them."""
     shape, mat, w = scene.indenter.shape, scene.material, scene.adhesion.work_of_adhesion
     prof = scene.indenter.profile
-    out = {}
+    out: dict[str, Any] = {}
     if isinstance(mat, cs.Homogeneous):
         E = mat.effective_modulus
         if prof.is_flat and isinstance(shape, cs.Circle):
@@ -115,7 +117,7 @@ def reference_values(scene: cs.Scene) -> dict:
                        source="bounds (Eqs. 13, 18)")
         elif isinstance(prof, (cs.Paraboloid, cs.Sphere)):
             out.update(pulloff_force=T.jkr_pulloff_force(work=w, sphere_radius=prof.radius), source="JKR 1.5 pi w R")
-    elif prof.is_flat and isinstance(shape, cs.Circle):
+    elif isinstance(mat, cs.PowerLawGraded) and prof.is_flat and isinstance(shape, cs.Circle):
         E0, c0, k = mat.surface_modulus, mat.reference_depth, mat.exponent
         out.update(pulloff_force=T.graded_adhesion_force(E0=E0, c0=c0, k=k, radius=shape.radius, work=w),
                    pulloff_approach=T.graded_critical_approach(E0=E0, c0=c0, k=k, radius=shape.radius, work=w),

@@ -51,13 +51,13 @@ def extreme_cases(*, callback=None) -> list[tuple]:
             r, dt = _timed(fn, circle(m))
             add(_row(f"nu = {nu}", name, r, K, dt))
     for k in (0.9, 0.95, -0.9, -0.95):
-        m = cs.PowerLawGraded(1.0, 1.0, k)
+        g = cs.PowerLawGraded(1.0, 1.0, k)
         K = T.graded_stiffness(E0=1.0, c0=1.0, k=k, radius=1.0)
         # stiffness rows: the criterion does not enter the stiffness (calibrated to |k| = 0.95)
-        r, dt = _timed(bg.solve, circle(m), griffith32)
+        r, dt = _timed(bg.solve, circle(g), griffith32)
         add(_row(f"k = {k}", "bem_griffith", r, K, dt))
         if k > 0:
-            r, dt = _timed(fr.solve, circle(m), fr.FemSettings(grading=2.0))
+            r, dt = _timed(fr.solve, circle(g), fr.FemSettings(grading=2.0))
             add(_row(f"k = {k}", "fem_reference", r, K, dt, f"accuracy estimate {r.accuracy_estimate:.1e}"))
     E = cs.Homogeneous(0.75, 0.5)
     for w in (1e-12, 1e6):

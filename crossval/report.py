@@ -9,6 +9,7 @@ import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from . import plotting
 from .cache import ResultCache, package_version
@@ -150,7 +151,8 @@ def report(out_dir="report", *, quick: bool = True, workers: int = 1, scheduler=
         matrix.append(row)
         notes.append(note)
 
-    sections, data = [], {"package_version": package_version(), "quick": quick, "scenes": {}}
+    sections: list[str] = []
+    data: dict[str, Any] = {"package_version": package_version(), "quick": quick, "scenes": {}}
     fig, ax = plt.subplots(figsize=(7, 0.45 * len(names) + 1.6), layout="constrained")
     plotting.plot_agreement(matrix, names, methods, ax, notes=notes)
     agreement_png = _png(fig, out / "agreement.png")
@@ -208,10 +210,10 @@ def report(out_dir="report", *, quick: bool = True, workers: int = 1, scheduler=
     if extremes if extremes is not None else not quick:
         from . import extremes as ex
 
-        rows = ex.extreme_cases()
-        data["extremes"] = [dict(zip(ex.HEADERS, r, strict=True)) for r in rows]
+        extreme_rows = ex.extreme_cases()
+        data["extremes"] = [dict(zip(ex.HEADERS, r, strict=True)) for r in extreme_rows]
         head = "".join(f"<th>{html.escape(h)}</th>" for h in ex.HEADERS)
-        body = "".join("<tr>" + "".join(f"<td>{html.escape(str(v))}</td>" for v in r) + "</tr>" for r in rows)
+        body = "".join("<tr>" + "".join(f"<td>{html.escape(str(v))}</td>" for v in r) + "</tr>" for r in extreme_rows)
         extreme_html = (f"<h2 id='extremes'>Stiff and extreme cases</h2><p>Stiffness error against Eq. 1 / Eq. 34 "
                         f"(n/a where there is no closed form).</p><table><tr>{head}</tr>{body}</table>")
     passed = all(c.passed for cs_ in checks.values() for c in cs_)

@@ -75,6 +75,11 @@ class ErrorReference:
     own_sequence: bool = False
 
 
+#: what a study without a closed form, a bounded method or an extrapolated sequence measures against
+NO_REFERENCE = ErrorReference(math.nan, "no reference (no closed form, no bounded method, fewer than 3 resolutions of "
+                                        "an extrapolated sequence)", "none", math.inf)
+
+
 @dataclass(frozen=True)
 class Convergence:
     """How one method's error falls with resolution (or time)."""
@@ -110,7 +115,7 @@ class Study:
     #: errors do not support one
     time_rates: dict = field(default_factory=dict)
     results: dict = field(default_factory=dict)        # (method, resolution) -> Result
-    reference_info: ErrorReference | None = None
+    reference_info: ErrorReference = field(default_factory=lambda: NO_REFERENCE)
     convergence: dict = field(default_factory=dict)    # method -> Convergence in resolution
     time_convergence: dict = field(default_factory=dict)  # method -> Convergence in wall time
 
@@ -193,7 +198,7 @@ def _reference(scene, quantity, by, res) -> ErrorReference:
     if quantity in theory:
         return ErrorReference(theory[quantity], theory["source"], "closed form")
     bounded = _reference_method(scene, "bounded")
-    if bounded in res:
+    if bounded is not None and bounded in res:
         finest = max(res[bounded])
         r = by[(bounded, finest)]
         bar = r.error_bars.get(quantity)
@@ -209,8 +214,7 @@ def _reference(scene, quantity, by, res) -> ErrorReference:
         how = ", forces scaled to the nominal area," if all(scaled) else ""
         return ErrorReference(lim, f"{seq}{how} extrapolated in 1/N over N = {', '.join(f'{n:g}' for n in ns)} "
                                    f"(+-{u:.1e})", "extrapolated", u, own_method=seq, own_sequence=True)
-    return ErrorReference(math.nan, "no reference (no closed form, no bounded method, fewer than 3 resolutions of "
-                                    "an extrapolated sequence)", "none", math.inf)
+    return NO_REFERENCE
 
 
 def _time_convergence(rows, floor) -> Convergence:
@@ -238,9 +242,10 @@ def study(scene: cs.Scene, *, methods=None, resolutions: dict | None = None, qua
             res.setdefault(bounded, given.get(bounded, DEFAULT_RESOLUTIONS[bounded][-1:]))
         elif seq is not None:
             res.setdefault(seq, given.get(seq, DEFAULT_RESOLUTIONS[seq]))
-    jobs = [Job(scene, m, r) for m in res for r in res[m]]
+    keys = [(m, r) for m in res for r in res[m]]
+    jobs = [Job(scene, m, r) for m, r in keys]
     results = run_jobs(jobs, workers=workers, scheduler=scheduler, cache=cache, callback=callback)
-    by = {(j.method, j.resolution): r for j, r in zip(jobs, results, strict=True)}
+    by = dict(zip(keys, results, strict=True))
     ref = _reference(scene, quantity, by, res)
     rows = []
     for (m, r), result in by.items():
