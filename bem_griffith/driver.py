@@ -115,7 +115,8 @@ def _certainly_detached(problem: Problem, contact: np.ndarray, approach: float, 
     times the circle's critical approach of that area (Eq. 14 bounds every flat face of a
     homogeneous body by the circle of its area)."""
     if not (problem.flat and settings.stop_when_certainly_detached and approach < 0
-            and problem.effective_modulus is not None and problem.work_of_adhesion > 0):
+            and problem.effective_modulus is not None and problem.work_of_adhesion > 0
+            and problem.circle_critical_approach is not None):
         return False
     area = float(contact.sum()) * problem.cell_area
     upper = problem.circle_critical_approach(area)
@@ -179,6 +180,7 @@ def _next_approach(problem: Problem, solution: ContactSolution, approach: float,
                    settings: GriffithSettings, rule: DetachmentRule) -> float:
     if settings.driver == "event":
         return next_event(problem, solution, approach, target, rule)
+    assert settings.step is not None   # GriffithSettings requires a step for the fixed-step driver
     step = settings.step if target > approach else -settings.step
     return approach + step if (approach + step - target) * np.sign(step) < 0 else target
 

@@ -5,9 +5,9 @@ from dataclasses import dataclass, field
 
 from contact_scene import Grid, SceneError
 from contact_scene.errors import check_choice, check_int, check_real
+from halfspace.operator import default_workers
 
 from .criterion import CRITERIA
-from halfspace.operator import default_workers
 
 __all__ = ["GriffithSettings"]
 
