@@ -448,12 +448,12 @@ def write_outputs(records: list[dict], meta: dict, out_dir: Path) -> None:
                   "Relative change of each checked value from the unmutated run, its difference from the "
                   "check's reference, and the check's tolerance (largest moves first).", ""]
         for r in missed:
-            lines.append(f"* `{r['id']}`: " + "; ".join(
+            lines.append(f"* `{r['id']}`: " + ("; ".join(
                 f"{m['scene']} {m['method']} {m['quantity']} moved {m['moved']:+.3%} (now {m['difference']:+.3%} "
                 f"from its reference, tolerance {m['tolerance']:.3%})" if m["difference"] is not None else
                 f"{m['scene']} {m['method']} {m['quantity']} moved {m['moved']:+.3%}"
                 for m in [m for m in r["quick_report"].get("moves", []) if abs(m["moved"]) > 1e-9][:4])
-                or "no checked value moved")
+                or "no checked value moved"))
     base = next((r for r in records if r["id"] == "baseline"), None)
     if base and "quick_report" in base:
         bad = [c for c in base["quick_report"].get("checks") or [] if not c["passed"]]
