@@ -31,6 +31,7 @@ from contact_scene.errors import check_choice, check_int, check_real
 
 from .model import (
     KERNELS,
+    SOLVE_TOLERANCE,
     Material,
     Model,
     assemble,
@@ -115,6 +116,7 @@ class UnitSolution:
     mesh: MeshTri | None = None
     model: Model | None = None
     x: np.ndarray | None = None
+    residual: float = 0.0      # the largest relative residual of the linear solves
 
 
 def write_fields(path: str, u: UnitSolution, *, radius: float, approach: float, modulus_scale: float) -> None:
@@ -181,14 +183,14 @@ def unit_solution(material: Material, settings: FemSettings, *, energy_release: 
     t1 = time.perf_counter()
     log.info("assembling and solving: %d elements of degree %d", mesh.t.shape[1], settings.order)
     model = assemble(mesh, material, order=settings.order, kernels=settings.kernels)
-    x = solve_unit_approach(model, kernels=settings.kernels)
+    x, residual = solve_unit_approach(model, kernels=settings.kernels)
     t2 = time.perf_counter()
     Mx = model.M @ x
     K = 2 * math.pi * float(np.add.reduce(x * Mx))            # the pairwise sum of _energy
     K_react = 2 * math.pi * float(np.add.reduce(Mx[model.punch]))
     if not energy_release:
         return UnitSolution(K, K_react, math.nan, None, model.M.shape[0], mesh.t.shape[1],
-                            {"mesh": t1 - t0, "solve": t2 - t1})
+                            {"mesh": t1 - t0, "solve": t2 - t1}, residual=residual)
     delta = 1e-4
     # only elements with a moved vertex change, so dM/da is assembled on those alone
     q = _shift(mesh, settings.vce_radius, material.mapping)
@@ -213,11 +215,12 @@ def unit_solution(material: Material, settings: FemSettings, *, energy_release: 
                         kernels=settings.kernels)
         minus = assemble(_moved(mesh, -delta, q), material, order=settings.order, face_radius=1 - delta,
                          kernels=settings.kernels)
-        xp = solve_unit_approach(plus, kernels=settings.kernels)
-        xm = solve_unit_approach(minus, kernels=settings.kernels)
+        (xp, rp), (xm, rm) = (solve_unit_approach(m, kernels=settings.kernels) for m in (plus, minus))
+        residual = max(residual, rp, rm)
         dK_c = 2 * math.pi * (_energy(plus.M, xp) - _energy(minus.M, xm)) / (2 * delta)
         timings["compliance_check"] = time.perf_counter() - t3
-    return UnitSolution(K, K_react, dK_vce, dK_c, model.M.shape[0], mesh.t.shape[1], timings, mesh, model, x)
+    return UnitSolution(K, K_react, dK_vce, dK_c, model.M.shape[0], mesh.t.shape[1], timings, mesh, model, x,
+                        residual=residual)
 
 
 # The error estimate compares the solution with the one of the neighbouring polynomial degree on
@@ -325,6 +328,11 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
     timings = dict(u.timings)
     timings["error_estimate"] = sum(comparison.timings.values())
     msgs = []
+    residual = max(u.residual, comparison.residual)
+    solved = residual < SOLVE_TOLERANCE
+    if not solved:
+        msgs.append(f"the saddle-point solve left a relative residual {residual:.1e} > {SOLVE_TOLERANCE:g} "
+                    "after every factorisation: the numbers are not to be trusted")
     if u.dK_compliance is not None:
         agree = abs(u.dK_vce / u.dK_compliance - 1)
         if agree > 1e-3:
@@ -344,7 +352,8 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
         pulloff_force=F_A,
         pulloff_approach=d_c,
         stiffness=K,
-        converged=True,
+        converged=solved,
+        residual=residual,
         grid_spacing=settings.h_min * a,
         curve=curve if scene.outputs.curve else None,
         detached=True,

@@ -254,3 +254,20 @@ def test_nested_dissection_is_a_permutation_with_less_fill():
 def test_kernels_setting_is_checked():
     with pytest.raises(cs.SceneError, match="fem.kernels"):
         fr.FemSettings(kernels="fast")
+
+
+def test_an_inaccurate_linear_solve_is_reported_not_raised(monkeypatch):
+    """A saddle-point solve whose residual stays above the tolerance after every factorisation
+    (forced here by a zero tolerance) gives converged = False with the residual and a message,
+    and the harness fails it; it neither raises nor returns a silent number."""
+    import fem_reference.model as fm
+    import fem_reference.solver as fs
+    from crossval.compare import check_results
+
+    monkeypatch.setattr(fm, "SOLVE_TOLERANCE", 0.0)
+    monkeypatch.setattr(fs, "SOLVE_TOLERANCE", 0.0)
+    sc = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0))
+    r = fr.solve(sc, fr.FemSettings(grading=2.0))
+    assert not r.converged and r.residual > 0
+    assert any("residual" in m for m in r.messages)
+    assert not any(c.passed for c in check_results(sc, {"fem_reference": r}))
