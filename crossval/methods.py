@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 from contact_scene import Scene, SceneError
 
-__all__ = ["Method", "Resolution", "Sweeps", "METHODS", "get_method", "applicable_methods"]
+__all__ = ["Method", "Resolution", "Sweeps", "METHODS", "reference_method", "get_method", "applicable_methods"]
 
 
 @dataclass(frozen=True)
@@ -203,6 +203,12 @@ def get_method(name: str) -> Method:
     if name not in METHODS:
         raise SceneError("method", f"unknown method {name!r}; available: {', '.join(sorted(METHODS))}")
     return METHODS[name]
+
+
+def reference_method(scene: Scene, kind: str) -> Method | None:
+    """The first registered method that applies to ``scene`` and serves as a reference of
+    ``kind`` (``Method.reference_kind``: "bounded" or "sequence"), or None."""
+    return next((m for m in METHODS.values() if m.reference_kind == kind and m.applies(scene) is None), None)
 
 
 def applicable_methods(scene: Scene) -> list[Method]:

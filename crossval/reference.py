@@ -8,7 +8,7 @@ import numpy as np
 
 import contact_scene as cs
 
-from .methods import METHODS
+from .methods import reference_method
 from .suite import load_scene_or_builtin
 
 __all__ = ["Reference", "reference", "assert_matches_reference"]
@@ -38,11 +38,13 @@ def reference(scene_or_name, *, resolution: float = 64) -> Reference:
     path: the FEM for circular flat punches it covers, else the Griffith BEM at ``resolution``
     elements per radius."""
     scene = scene_or_name if isinstance(scene_or_name, cs.Scene) else load_scene_or_builtin(scene_or_name)
-    bounded = [m for m in METHODS.values() if m.reference_kind == "bounded" and m.applies(scene) is None]
-    if bounded:
-        method, r = bounded[0].name, bounded[0].solve(scene)
+    bounded = reference_method(scene, "bounded")
+    if bounded is not None:
+        method, r = bounded.name, bounded.solve(scene)
     else:
-        grid = next(m for m in METHODS.values() if m.reference_kind == "sequence" and m.applies(scene) is None)
+        grid = reference_method(scene, "sequence")
+        if grid is None:
+            raise cs.SceneError("scene", "no registered method can give a reference for this scene")
         method, r = grid.name, grid.solve(scene, resolution=resolution)
     if not r.converged:
         raise RuntimeError(f"the reference solve ({method}) did not converge: {'; '.join(r.messages)}")

@@ -29,7 +29,7 @@ import contact_scene as cs
 from contact_scene import theory as T
 
 from .compare import reference_values
-from .methods import METHODS, applicable_methods
+from .methods import METHODS, applicable_methods, reference_method
 from .runner import Job, run_jobs
 
 __all__ = ["StudyRow", "Study", "Convergence", "ErrorReference", "study", "convergence",
@@ -189,8 +189,8 @@ def _at_nominal_area(scene, result, quantity) -> tuple[float, bool]:
 
 
 def _reference_method(scene, kind: str) -> str | None:
-    """The first registered method that applies to ``scene`` and serves as a reference of ``kind``."""
-    return next((m.name for m in METHODS.values() if m.reference_kind == kind and m.applies(scene) is None), None)
+    method = reference_method(scene, kind)
+    return None if method is None else method.name
 
 
 def _reference(scene, quantity, by, res) -> ErrorReference:
