@@ -1,5 +1,6 @@
 """Energy-minimisation BEM (Rey-style): elastic energy + finite-range adhesive potential,
 hard wall on the face, pull-off by continuation; the zero-range limit by extrapolation."""
+
 from __future__ import annotations
 
 from contact_scene import Result, Scene
@@ -11,9 +12,24 @@ from .settings import EnergySettings, ZeroRangeSettings
 from .solver import EnergyInfo, finite_range_grid, pull_off
 from .zero_range import ZeroRangeInfo, richardson, zero_range
 
-__all__ = ["solve", "solve_with_resolution", "pull_off", "finite_range_grid", "zero_range", "richardson",
-           "EnergySettings", "ZeroRangeSettings", "Potential", "process_zone_length", "EnergyProblem", "build_problem",
-           "Minimum", "minimise", "EnergyInfo", "ZeroRangeInfo"]
+__all__ = [
+    "solve",
+    "solve_with_resolution",
+    "pull_off",
+    "finite_range_grid",
+    "zero_range",
+    "richardson",
+    "EnergySettings",
+    "ZeroRangeSettings",
+    "Potential",
+    "process_zone_length",
+    "EnergyProblem",
+    "build_problem",
+    "Minimum",
+    "minimise",
+    "EnergyInfo",
+    "ZeroRangeInfo",
+]
 
 
 def solve(scene: Scene, settings: EnergySettings | ZeroRangeSettings | None = None, *, callback=None) -> Result:

@@ -8,6 +8,7 @@ step that loses the last such cell crosses the snap-off, which :func:`peak.locat
 then brackets.  The recorded curve keeps the largest tension of the attached states and its
 neighbours, from which :mod:`peak` refines a smooth force maximum.
 """
+
 from __future__ import annotations
 
 import math
@@ -58,8 +59,9 @@ class LoadingPath:
         if largest.index == len(self.approach) - 1 and largest.after is None:
             largest.after = (float(d), attached)
         if attached and F < largest.force:
-            self.largest = LargestTension(F, len(self.approach), m.U,
-                                          self.approach[-1] if self.approach else None, None)
+            self.largest = LargestTension(
+                F, len(self.approach), m.U, self.approach[-1] if self.approach else None, None
+            )
         self.approach.append(float(d))
         self.force.append(F)
         self.contact_area.append(A)
@@ -92,8 +94,18 @@ class PullOutcome:
     messages: list[str] = field(default_factory=list)
 
 
-def pull(eq: Equilibria, scene: Scene, path: LoadingPath, d0: float, m0: Minimum, adhesive: bool, *,
-         step: float, snap_tolerance: float, max_steps: int) -> PullOutcome:
+def pull(
+    eq: Equilibria,
+    scene: Scene,
+    path: LoadingPath,
+    d0: float,
+    m0: Minimum,
+    adhesive: bool,
+    *,
+    step: float,
+    snap_tolerance: float,
+    max_steps: int,
+) -> PullOutcome:
     """Continue from the pressed state (d0, m0) through the scene's turning points to its pull
     limit (or until detached), in steps of ``step``, stopping at requested snapshot approaches;
     a snap-off is bracketed to ``snap_tolerance`` (an approach)."""
@@ -117,11 +129,22 @@ def pull(eq: Equilibria, scene: Scene, path: LoadingPath, d0: float, m0: Minimum
                 d_next = between[0]
             # warm start: extrapolate along the branch (secant), then the minimiser projects
             U0 = m.U if U_prev is None or d_prev is None else m.U + (m.U - U_prev) * ((d_next - d) / (d - d_prev))
-            m_new = eq.pulling_trial(U0, d_next, adhesive) if attached and sign < 0 else eq.minimum(U0, d_next, adhesive)
+            m_new = (
+                eq.pulling_trial(U0, d_next, adhesive) if attached and sign < 0 else eq.minimum(U0, d_next, adhesive)
+            )
             now = eq.attached(m_new, d_next, adhesive)
             if attached and not now and sign < 0:
-                snap = locate_snap_off(eq, path, d, m, d_next, m_new, adhesive, tolerance=snap_tolerance,
-                                       locate_detachment=eq.settings.locate_detachment)
+                snap = locate_snap_off(
+                    eq,
+                    path,
+                    d,
+                    m,
+                    d_next,
+                    m_new,
+                    adhesive,
+                    tolerance=snap_tolerance,
+                    locate_detachment=eq.settings.locate_detachment,
+                )
                 out.snap_off = snap
                 d_next, m_new = snap.detached_approach, snap.detached_state
             for s in wanted:
@@ -136,8 +159,9 @@ def pull(eq: Equilibria, scene: Scene, path: LoadingPath, d0: float, m0: Minimum
             if not attached and target == final:
                 break
             if steps > max_steps:
-                out.messages.append(f"stopped after {steps} steps at d = {d:.6g}, "
-                                    f"{'still attached' if attached else 'detached'}")
+                out.messages.append(
+                    f"stopped after {steps} steps at d = {d:.6g}, {'still attached' if attached else 'detached'}"
+                )
                 break
         if steps > max_steps or (not attached and target == final):
             break

@@ -6,6 +6,7 @@ Every minimisation of a pull-off goes through :class:`Equilibria`, so that the w
 one place, and the definitions of contact and attachment are the same for the loading path,
 the snap-off search and the result.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -41,14 +42,15 @@ class WorkCount:
         self.iterations += m.iterations
         self.evaluations += m.evaluations
         if m.peeled:
-            self.peeled += 1          # stopped on purpose: the state is known to be detaching
+            self.peeled += 1  # stopped on purpose: the state is known to be detaching
             return
         self.worst_gradient = max(self.worst_gradient, m.gradient)
         if not m.converged:
             self.unconverged += 1
             if len(self.failures) < NOTED_FAILURES:
-                self.failures.append(f"minimisation at d = {d:.6g} did not converge "
-                                     f"(projected gradient {m.gradient:.3g}; {m.message})")
+                self.failures.append(
+                    f"minimisation at d = {d:.6g} did not converge (projected gradient {m.gradient:.3g}; {m.message})"
+                )
 
     def messages(self) -> list[str]:
         out = list(self.failures)
@@ -57,9 +59,14 @@ class WorkCount:
         return out
 
     def solver_stats(self, *, events: int, unknowns: int) -> SolverStats:
-        return SolverStats(linear_solves=self.minimisations, linear_iterations=self.iterations,
-                           operator_applications=self.evaluations, events=events,
-                           unconverged=self.unconverged, unknowns=unknowns)
+        return SolverStats(
+            linear_solves=self.minimisations,
+            linear_iterations=self.iterations,
+            operator_applications=self.evaluations,
+            events=events,
+            unconverged=self.unconverged,
+            unknowns=unknowns,
+        )
 
 
 #: the least fall of the contact (a fraction of its most) that marks a trial as peeling off
@@ -83,13 +90,23 @@ class Equilibria:
         self.work = WorkCount()
         self.peel_fraction = None
         if settings.stop_peeling_trials and settings.minimiser == "pk" and prob.potential is not None:
-            self.peel_fraction = max(PEEL_FRACTION_MIN, PEEL_FRACTION_PER_PROCESS_ZONE * prob.process_zone / face_radius)
+            self.peel_fraction = max(
+                PEEL_FRACTION_MIN, PEEL_FRACTION_PER_PROCESS_ZONE * prob.process_zone / face_radius
+            )
 
     def minimum(self, U0: np.ndarray, d: float, adhesive: bool) -> Minimum:
         """The equilibrium at approach ``d`` reached from the warm start ``U0``."""
         s = self.settings
-        m = minimise(self.prob, U0, d, adhesive, method=s.minimiser, gtol=s.gtol,
-                     max_iterations=s.max_iterations, memory=s.memory)
+        m = minimise(
+            self.prob,
+            U0,
+            d,
+            adhesive,
+            method=s.minimiser,
+            gtol=s.gtol,
+            max_iterations=s.max_iterations,
+            memory=s.memory,
+        )
         self.work.add(m, d)
         return m
 
@@ -104,8 +121,17 @@ class Equilibria:
         if self.peel_fraction is None or not adhesive:
             return self.minimum(U0, d, adhesive)
         s = self.settings
-        m = minimise(self.prob, U0, d, adhesive, method=s.minimiser, gtol=s.gtol,
-                     max_iterations=s.max_iterations, memory=s.memory, peel_fraction=self.peel_fraction)
+        m = minimise(
+            self.prob,
+            U0,
+            d,
+            adhesive,
+            method=s.minimiser,
+            gtol=s.gtol,
+            max_iterations=s.max_iterations,
+            memory=s.memory,
+            peel_fraction=self.peel_fraction,
+        )
         self.work.add(m, d)
         if not m.peeled:
             return m

@@ -10,6 +10,7 @@
   stored in ``error_model.json`` beside this module.
 * A finite range is not the zero-range theory: its pull-off has no bar against Kendall.
 """
+
 from __future__ import annotations
 
 import functools
@@ -27,8 +28,9 @@ def model() -> dict:
     return json.loads(resources.files(__package__).joinpath("error_model.json").read_text())
 
 
-def error_bars(scene: Scene, *, spacing: float, face_area: float,
-               zero_range_estimate: float | None = None) -> dict[str, ErrorBar]:
+def error_bars(
+    scene: Scene, *, spacing: float, face_area: float, zero_range_estimate: float | None = None
+) -> dict[str, ErrorBar]:
     """The bars of a solve of ``scene`` whose (finest) grid has element side ``spacing`` and face
     area ``face_area``; ``zero_range_estimate``: the zero-range limit's relative error estimate."""
     shape = scene.indenter.shape
@@ -39,10 +41,13 @@ def error_bars(scene: Scene, *, spacing: float, face_area: float,
     defect = abs(face_area / shape.area - 1)
     m = model()["quantities"]["stiffness"]
     c = m["c"] if N >= model()["fit_from"] else m["coarse_c"]
-    bars["stiffness"] = ErrorBar(c / N + 0.5 * defect,
-                                 f"{c:.3g}/N + 0.5 |dA/A| at N = {N:.3g} (flat circle and square; "
-                                 "benchmarks/study_error_models.py)")
+    bars["stiffness"] = ErrorBar(
+        c / N + 0.5 * defect,
+        f"{c:.3g}/N + 0.5 |dA/A| at N = {N:.3g} (flat circle and square; benchmarks/study_error_models.py)",
+    )
     if zero_range_estimate is not None:
-        bars["pulloff_force"] = ErrorBar(zero_range_estimate, "the zero-range extrapolation's estimate "
-                                         "(bounds every window of tests/data/zero_range_study.json)")
+        bars["pulloff_force"] = ErrorBar(
+            zero_range_estimate,
+            "the zero-range extrapolation's estimate (bounds every window of tests/data/zero_range_study.json)",
+        )
     return bars

@@ -5,6 +5,7 @@ on, and return a :class:`Minimum`.  Convergence is judged the same way for all: 
 gradient, in units of the pressure that displaces one element by the length scale L (the
 range rho with adhesion, else |d|), must fall below ``gtol``.
 """
+
 from __future__ import annotations
 
 import logging
@@ -42,9 +43,9 @@ class Minimum:
     iterations: int
     evaluations: int
     converged: bool
-    gradient: float          # scaled projected-gradient norm reached
+    gradient: float  # scaled projected-gradient norm reached
     message: str = ""
-    peeled: bool = False     # stopped because the contact fell (``peel_fraction``): detaching
+    peeled: bool = False  # stopped because the contact fell (``peel_fraction``): detaching
 
 
 def _length_scale(prob: EnergyProblem, d: float, adhesive: bool) -> float:
@@ -71,9 +72,18 @@ def projected_gradient(prob: EnergyProblem, U: np.ndarray, G: np.ndarray, d: flo
     return float(np.max(np.abs(pg))) * prob.self_compliance / (prob.cell * L)
 
 
-def minimise(prob: EnergyProblem, U0: np.ndarray, d: float, adhesive: bool, *, method: str = "lbfgsb",
-             gtol: float = 1e-6, max_iterations: int = 50_000, memory: int = 10,
-             peel_fraction: float | None = None) -> Minimum:
+def minimise(
+    prob: EnergyProblem,
+    U0: np.ndarray,
+    d: float,
+    adhesive: bool,
+    *,
+    method: str = "lbfgsb",
+    gtol: float = 1e-6,
+    max_iterations: int = 50_000,
+    memory: int = 10,
+    peel_fraction: float | None = None,
+) -> Minimum:
     """The constrained minimum from the warm start ``U0``.  ``peel_fraction`` s (projected CG
     only): stop, not converged and ``peeled``, once the face cells at the wall have fallen
     below (1 - s) of the most this minimisation had, i.e. the state is peeling off toward the
@@ -95,6 +105,7 @@ def minimise(prob: EnergyProblem, U0: np.ndarray, d: float, adhesive: bool, *, m
 # L-BFGS-B
 # ---------------------------------------------------------------------------
 
+
 def _lbfgsb(prob, U0, d, adhesive, gtol, max_iterations, memory) -> Minimum:
     L = _length_scale(prob, d, adhesive)
     # energy unit: one element displaced by L; gradients are then O(1) at the scale of interest
@@ -111,9 +122,16 @@ def _lbfgsb(prob, U0, d, adhesive, gtol, max_iterations, memory) -> Minimum:
         return E / e, G.ravel() * (L / e)
 
     bounds = optimize.Bounds((lb / L).ravel(), np.inf)
-    res = optimize.minimize(fun, x0, jac=True, method="L-BFGS-B", bounds=bounds,
-                            options=dict(maxcor=memory, ftol=0.0, gtol=0.1 * gtol, maxiter=max_iterations,
-                                         maxfun=2 * max_iterations, maxls=40))
+    res = optimize.minimize(
+        fun,
+        x0,
+        jac=True,
+        method="L-BFGS-B",
+        bounds=bounds,
+        options=dict(
+            maxcor=memory, ftol=0.0, gtol=0.1 * gtol, maxiter=max_iterations, maxfun=2 * max_iterations, maxls=40
+        ),
+    )
     U = res.x.reshape(M) * L
     E, G, P = prob.energy(U, d, adhesive)
     pg = projected_gradient(prob, U, G, d, L)
@@ -126,6 +144,7 @@ def _lbfgsb(prob, U0, d, adhesive, gtol, max_iterations, memory) -> Minimum:
 # ---------------------------------------------------------------------------
 # Polonsky-Keer / Rey style projected conjugate gradients
 # ---------------------------------------------------------------------------
+
 
 def _projected_cg(prob, U0, d, adhesive, gtol, max_iterations, peel_fraction=None) -> Minimum:
     """Conjugate directions on the free set, preconditioned by C itself (which inverts the
@@ -141,7 +160,7 @@ def _projected_cg(prob, U0, d, adhesive, gtol, max_iterations, peel_fraction=Non
     E, G, P = prob.energy(U, d, adhesive)
     direction = None
     Gf_previous = None
-    zg_previous = 0.0                    # no previous step: the first direction is steepest descent
+    zg_previous = 0.0  # no previous step: the first direction is steepest descent
     fixed_previous = np.zeros(0, bool)
     evals = 1
     potential = prob.potential if adhesive else None
@@ -217,6 +236,7 @@ def _projected_cg(prob, U0, d, adhesive, gtol, max_iterations, peel_fraction=Non
 # cvxpy: sequential convex QPs on the face (small grids)
 # ---------------------------------------------------------------------------
 
+
 def face_matrix(prob: EnergyProblem) -> np.ndarray:
     """The dense influence matrix C_ff between face cells (u_f = C_ff p_f)."""
     import scipy.fft as sfft
@@ -238,13 +258,14 @@ class _FaceQP:
         scale = prob.self_compliance
         Cff = face_matrix(prob)
         self.Cff = 0.5 * (Cff + Cff.T)
-        K = np.linalg.inv(self.Cff / scale)          # stiffness in units of 1 / C_00
+        K = np.linalg.inv(self.Cff / scale)  # stiffness in units of 1 / C_00
         self.K = 0.5 * (K + K.T)
         n = self.K.shape[0]
         self.s = cp.Variable(n)
         self.g, self.lower = cp.Parameter(n), cp.Parameter(n)
-        self.qp = cp.Problem(cp.Minimize(0.5 * cp.quad_form(self.s, cp.psd_wrap(self.K)) + self.g @ self.s),
-                             [self.s >= self.lower])
+        self.qp = cp.Problem(
+            cp.Minimize(0.5 * cp.quad_form(self.s, cp.psd_wrap(self.K)) + self.g @ self.s), [self.s >= self.lower]
+        )
 
     def step(self, g: np.ndarray, lower: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
         """The QP's solution and its set of cells at the bound (None if the solver fails).  Clarabel finds the solution
@@ -268,7 +289,7 @@ class _FaceQP:
         if self.s.value is None:
             return None
         s0 = np.maximum(np.asarray(self.s.value, float), lower)
-        active = K @ s0 + g > s0 - lower                # multiplier larger than the slack
+        active = K @ s0 + g > s0 - lower  # multiplier larger than the slack
         s1 = _on_active_set(K, g, lower, active)
         if _solves_qp(K, g, lower, s1, active):
             return np.maximum(s1, lower), active
@@ -314,7 +335,7 @@ def _cvxpy(prob, U0, d, adhesive, gtol, max_iterations) -> Minimum:
     K = face_qp.K
     L = _length_scale(prob, d, adhesive)
     pot = prob.potential if adhesive else None
-    a = prob.self_compliance / L**2               # one cell's adhesive energy in the energy unit
+    a = prob.self_compliance / L**2  # one cell's adhesive energy in the energy unit
     wall = _lower_bound(prob, d) / L
     x = np.maximum(U0[prob.face] / L, wall)
     elastic = float(np.dot(x, K @ x))

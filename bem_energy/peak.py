@@ -7,6 +7,7 @@ attached branch where F - F* ~ sqrt(d - d*): bisection between the last attached
 first detached approach locates the fold to its tolerance, F* only to the square root of it,
 so the vertex of the parabola d(F) through the last attached points gives F*.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -51,7 +52,7 @@ class PullOffPoint:
 def fold_vertex(points) -> tuple[float, float] | None:
     """Vertex (d*, F*) of the parabola d = alpha F^2 + beta F + gamma through the three
     attached points closest to the fold; None if they do not bend toward one."""
-    pts = sorted(set(points))[:3]          # smallest d: closest to the snap (pulling)
+    pts = sorted(set(points))[:3]  # smallest d: closest to the snap (pulling)
     if len(pts) < 3:
         return None
     d = np.array([p[0] for p in pts])
@@ -70,8 +71,18 @@ def fold_vertex(points) -> tuple[float, float] | None:
     return float(gamma - beta**2 / (4 * alpha)), float(F_mean + F_span * xv)
 
 
-def locate_snap_off(eq: Equilibria, path: LoadingPath, d_att: float, m_att: Minimum, d_det: float,
-                    m_det: Minimum, adhesive: bool, *, tolerance: float, locate_detachment: bool = True) -> SnapOff:
+def locate_snap_off(
+    eq: Equilibria,
+    path: LoadingPath,
+    d_att: float,
+    m_att: Minimum,
+    d_det: float,
+    m_det: Minimum,
+    adhesive: bool,
+    *,
+    tolerance: float,
+    locate_detachment: bool = True,
+) -> SnapOff:
     """Bisect between the attached state at ``d_att`` and the detached one at ``d_det`` until
     they are ``tolerance`` apart, every trial starting from the last attached state (a trial
     started from a detached one stays detached); attached trials join the loading path.
@@ -113,16 +124,20 @@ def _refine_smooth_maximum(eq: Equilibria, path: LoadingPath, tolerance: float) 
 
     r = optimize.minimize_scalar(force_at, bounds=(lower_d, upper_d), method="bounded", options={"xatol": tolerance})
     j = largest.index
-    seg = sorted([(path.approach[k], path.force[k], path.contact_area[k]) for k in (j - 1, j, j + 1)] + extra,
-                 key=lambda t: t[0], reverse=path.approach[j - 1] > path.approach[j + 1])
-    path.approach[j - 1:j + 2] = [t[0] for t in seg]
-    path.force[j - 1:j + 2] = [t[1] for t in seg]
-    path.contact_area[j - 1:j + 2] = [t[2] for t in seg]
+    seg = sorted(
+        [(path.approach[k], path.force[k], path.contact_area[k]) for k in (j - 1, j, j + 1)] + extra,
+        key=lambda t: t[0],
+        reverse=path.approach[j - 1] > path.approach[j + 1],
+    )
+    path.approach[j - 1 : j + 2] = [t[0] for t in seg]
+    path.force[j - 1 : j + 2] = [t[1] for t in seg]
+    path.contact_area[j - 1 : j + 2] = [t[2] for t in seg]
     return float(r.fun), float(r.x)
 
 
-def force_maximum(eq: Equilibria, path: LoadingPath, snap: SnapOff | None, adhesive: bool, *,
-                  tolerance: float) -> PullOffPoint:
+def force_maximum(
+    eq: Equilibria, path: LoadingPath, snap: SnapOff | None, adhesive: bool, *, tolerance: float
+) -> PullOffPoint:
     """The pull-off point of a finished loading path: the largest recorded tension, replaced
     by the fold's vertex when the tension grows up to the snap-off, or refined by Brent (to
     ``tolerance`` in d) when a smooth maximum lies between two attached states."""
@@ -131,8 +146,13 @@ def force_maximum(eq: Equilibria, path: LoadingPath, snap: SnapOff | None, adhes
     pulloff = float(max(tensile[i], 0.0))
     pulloff_d = float(path.approach[i])
     largest = path.largest
-    if (snap is not None and snap.fold is not None and i == snap.fold_index and -snap.fold[1] >= pulloff
-            and snap.detached_approach <= snap.fold[0] <= pulloff_d):
+    if (
+        snap is not None
+        and snap.fold is not None
+        and i == snap.fold_index
+        and -snap.fold[1] >= pulloff
+        and snap.detached_approach <= snap.fold[0] <= pulloff_d
+    ):
         return PullOffPoint(float(-snap.fold[1]), float(snap.fold[0]), "fold")
     if adhesive and largest.before is not None and largest.after is not None and largest.after[1]:
         F, d = _refine_smooth_maximum(eq, path, tolerance)

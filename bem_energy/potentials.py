@@ -5,6 +5,7 @@ phi(inf) = 0) and rho the range.  The Tabor-like length l_c = E* rho^2 / w (grad
 see :func:`process_zone_length`) measures the process zone; it must be resolved by the grid
 (:data:`PROCESS_ZONE_ELEMENTS`) or the result is trapped by the mesh.
 """
+
 from __future__ import annotations
 
 import math
@@ -15,8 +16,14 @@ import numpy as np
 from contact_scene import SceneError
 from contact_scene.errors import check_choice, check_real
 
-__all__ = ["Potential", "process_zone_length", "process_zone_modulus", "process_zone_exponent",
-           "range_for_process_zone", "PROCESS_ZONE_ELEMENTS"]
+__all__ = [
+    "Potential",
+    "process_zone_length",
+    "process_zone_modulus",
+    "process_zone_exponent",
+    "range_for_process_zone",
+    "PROCESS_ZONE_ELEMENTS",
+]
 
 #: Elements per process zone l_c of a finite-range pull-off, per potential: (the fewest for a
 #: converged result, the default grid's count).  Measured on the flat circle, F_A scaled to

@@ -1,5 +1,6 @@
 """The press before the pull: without adhesion (as in the Griffith solver), to the scene's
 approach or force, and the initial stiffness of that contact."""
+
 from __future__ import annotations
 
 import numpy as np

@@ -10,6 +10,7 @@ solution, which is why the padding region carries free variables instead of bein
 Energy (per the whole face, in J):  Pi(U) = cell * [ 1/2 U.P + sum_face phi(g) ],
 g = U - (d - h) >= 0 on the face (hard wall), h the profile height.
 """
+
 from __future__ import annotations
 
 import math
@@ -36,16 +37,16 @@ def estimate_memory_gb(nx: int, ny: int, memory: int = 10) -> float:
 
 @dataclass(frozen=True, eq=False)
 class EnergyProblem:
-    symbol: np.ndarray        # rfft2 of the padded kernel: U = C P
-    face: np.ndarray          # bool on the padded grid
-    n: tuple[int, int]        # the raster's grid (top-left corner of the padded grid)
-    height: np.ndarray        # profile height on the face cells (1-D, face order)
+    symbol: np.ndarray  # rfft2 of the padded kernel: U = C P
+    face: np.ndarray  # bool on the padded grid
+    n: tuple[int, int]  # the raster's grid (top-left corner of the padded grid)
+    height: np.ndarray  # profile height on the face cells (1-D, face order)
     spacing: float
     origin: tuple[float, float]
     potential: Potential | None
-    modulus: float            # E* (E_k = 1 / (pi A_k) for a graded body): sets the process zone
-    self_compliance: float    # C_00, the kernel's self coefficient: sets the minimisers' scales
-    exponent: float = 0.0     # the grading exponent k (0: homogeneous)
+    modulus: float  # E* (E_k = 1 / (pi A_k) for a graded body): sets the process zone
+    self_compliance: float  # C_00, the kernel's self coefficient: sets the minimisers' scales
+    exponent: float = 0.0  # the grading exponent k (0: homogeneous)
     #: the symbol in single precision, for :meth:`preconditioned`
     symbol_single: np.ndarray = field(init=False, repr=False)
 
@@ -64,8 +65,9 @@ class EnergyProblem:
     def process_zone(self) -> float:
         if self.potential is None:
             return math.inf
-        return process_zone_length(modulus=self.modulus, work=self.potential.work, range=self.potential.range,
-                                   exponent=self.exponent)
+        return process_zone_length(
+            modulus=self.modulus, work=self.potential.work, range=self.potential.range, exponent=self.exponent
+        )
 
     def pressure(self, U: np.ndarray) -> np.ndarray:
         return sfft.irfft2(sfft.rfft2(U) / self.symbol, s=self.padded)
@@ -104,12 +106,21 @@ class EnergyProblem:
 
 
 #: the half-space discretisations (``EnergySettings.kernel``): (homogeneous, graded) coefficients
-KERNELS = {"collocation": (collocated_influence, collocated_graded_influence),
-           "love": (love_influence, graded_influence)}
+KERNELS = {
+    "collocation": (collocated_influence, collocated_graded_influence),
+    "love": (love_influence, graded_influence),
+}
 
 
-def build_problem(scene: Scene, spacing: float, potential: Potential | None, *, memory: int = 10,
-                  max_memory_gb: float = 8.0, kernel: str = "collocation") -> EnergyProblem:
+def build_problem(
+    scene: Scene,
+    spacing: float,
+    potential: Potential | None,
+    *,
+    memory: int = 10,
+    max_memory_gb: float = 8.0,
+    kernel: str = "collocation",
+) -> EnergyProblem:
     """The discrete problem of ``scene`` on a grid of ``spacing``, with the half-space
     discretised by ``kernel`` (see :class:`bem_energy.EnergySettings`)."""
     if kernel not in KERNELS:
@@ -120,8 +131,11 @@ def build_problem(scene: Scene, spacing: float, potential: Potential | None, *, 
     nx, ny = raster.shape
     need = estimate_memory_gb(nx, ny, memory)
     if need > max_memory_gb:
-        raise SceneError("settings.grid", f"a {nx} x {ny} grid needs about {need:.1f} GB for the energy "
-                         f"method (> {max_memory_gb:g}); coarsen the grid")
+        raise SceneError(
+            "settings.grid",
+            f"a {nx} x {ny} grid needs about {need:.1f} GB for the energy "
+            f"method (> {max_memory_gb:g}); coarsen the grid",
+        )
     # a square window of the kernel: truncating the Love kernel to an elongated window (2 nx x
     # 2 ny for a 4:1 rectangle) gave a circulant with negative eigenvalues; the square one
     # stays positive definite (checked below, for either kernel)
@@ -139,11 +153,24 @@ def build_problem(scene: Scene, spacing: float, potential: Potential | None, *, 
         raise SceneError("material", f"unsupported material {type(mat).__name__}")
     symbol = sfft.rfft2(K).real
     if not symbol.min() > 0:
-        raise SceneError("material", "the padded influence matrix is not positive definite for this material "
-                         f"(smallest eigenvalue {symbol.min():.3g}); the energy method cannot use it")
+        raise SceneError(
+            "material",
+            "the padded influence matrix is not positive definite for this material "
+            f"(smallest eigenvalue {symbol.min():.3g}); the energy method cannot use it",
+        )
     face = np.zeros(M, bool)
     face[:nx, :ny] = raster.mask
     X, Y = raster.centres()
     height = np.asarray(scene.indenter.profile.height(X, Y), float)[raster.mask]
-    return EnergyProblem(symbol, face, (nx, ny), height, float(spacing), raster.origin, potential,
-                         float(modulus), float(K[0, 0]), process_zone_exponent(mat))
+    return EnergyProblem(
+        symbol,
+        face,
+        (nx, ny),
+        height,
+        float(spacing),
+        raster.origin,
+        potential,
+        float(modulus),
+        float(K[0, 0]),
+        process_zone_exponent(mat),
+    )

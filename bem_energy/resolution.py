@@ -5,6 +5,7 @@ than the potential's fewest elements per l_c traps the zone and the force oversh
 default grid follows l_c, and a grid too large to run in reasonable time is refused with the
 shortest range that fits.
 """
+
 from __future__ import annotations
 
 import math
@@ -22,8 +23,14 @@ from .potentials import (
 )
 from .problem import EnergyProblem
 
-__all__ = ["default_potential", "unresolved_process_zone", "finite_range_grid", "critical_approach_scale",
-           "MAX_DEFAULT_SIDE", "DEFAULT_ELEMENTS_PER_RADIUS"]
+__all__ = [
+    "default_potential",
+    "unresolved_process_zone",
+    "finite_range_grid",
+    "critical_approach_scale",
+    "MAX_DEFAULT_SIDE",
+    "DEFAULT_ELEMENTS_PER_RADIUS",
+]
 
 
 def default_potential(scene: Scene) -> Potential | None:
@@ -46,10 +53,12 @@ def unresolved_process_zone(scene: Scene, prob: EnergyProblem, potential: Potent
         return None
     a = scene.indenter.shape.equivalent_radius
     formula = "E* rho^2 / w" if prob.exponent == 0 else f"(E_k rho^2 / w)^(1/(1-k)), k = {prob.exponent:g}"
-    return (f"the grid has {per:.3g} elements per process zone l_c = {lc:.3g} ({formula}, {lc / a:.3g} a); "
-            f"the {potential.kind} potential needs at least {need:g}, below which the result is trapped by the mesh: "
-            f"use --resolution {math.ceil(need * a / lc * (1 - 1e-9)):d} or more (elements per radius sqrt(A/pi)), "
-            "or a longer range")
+    return (
+        f"the grid has {per:.3g} elements per process zone l_c = {lc:.3g} ({formula}, {lc / a:.3g} a); "
+        f"the {potential.kind} potential needs at least {need:g}, below which the result is trapped by the mesh: "
+        f"use --resolution {math.ceil(need * a / lc * (1 - 1e-9)):d} or more (elements per radius sqrt(A/pi)), "
+        "or a longer range"
+    )
 
 
 #: the largest raster side a finite-range run picks by itself (the padded FFT grid is twice
@@ -90,14 +99,18 @@ def finite_range_grid(scene: Scene, resolution: float | None = None) -> Grid:
         lc_min = per * width / MAX_DEFAULT_SIDE
         rho_min = range_for_process_zone(modulus=E, work=potential.work, length=lc_min, exponent=k)
         unit = 10.0 ** (math.floor(math.log10(rho_min)) - 2)
-        rho_min = math.ceil(rho_min / unit * (1 - 1e-12)) * unit      # three digits, rounded up: it fits
-        raise SceneError("adhesion.range", (
-            f"range {potential.range:g} gives a process zone l_c = {lc:.3g} ({lc / a:.3g} a); resolving it "
-            f"({per:g} elements per l_c for the {potential.kind} potential) needs a {side} x {side} grid "
-            f"({a / h:.0f} elements per radius), wider than the {MAX_DEFAULT_SIDE} a run picks by itself "
-            f"(an hour or more): use a range >= {rho_min:.3g} (l_c >= {lc_min / a:.3g} a), "
-            "the zero-range limit (no range), "
-            "or give --resolution (a grid too coarse for l_c is run but reported not converged)"))
+        rho_min = math.ceil(rho_min / unit * (1 - 1e-12)) * unit  # three digits, rounded up: it fits
+        raise SceneError(
+            "adhesion.range",
+            (
+                f"range {potential.range:g} gives a process zone l_c = {lc:.3g} ({lc / a:.3g} a); resolving it "
+                f"({per:g} elements per l_c for the {potential.kind} potential) needs a {side} x {side} grid "
+                f"({a / h:.0f} elements per radius), wider than the {MAX_DEFAULT_SIDE} a run picks by itself "
+                f"(an hour or more): use a range >= {rho_min:.3g} (l_c >= {lc_min / a:.3g} a), "
+                "the zero-range limit (no range), "
+                "or give --resolution (a grid too coarse for l_c is run but reported not converged)"
+            ),
+        )
     return Grid(spacing=h)
 
 
@@ -111,5 +124,8 @@ def critical_approach_scale(scene: Scene) -> float:
     if isinstance(mat, Homogeneous):
         return abs(theory.upper_bound_approach(E_star=mat.effective_modulus, work=w, area=area))
     assert isinstance(mat, PowerLawGraded)
-    return abs(theory.graded_critical_approach(E0=mat.surface_modulus, c0=mat.reference_depth, k=mat.exponent,
-                                               radius=math.sqrt(area / math.pi), work=w))
+    return abs(
+        theory.graded_critical_approach(
+            E0=mat.surface_modulus, c0=mat.reference_depth, k=mat.exponent, radius=math.sqrt(area / math.pi), work=w
+        )
+    )

@@ -1,4 +1,5 @@
 """Discretisation and solver settings of the energy-minimisation BEM."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -82,7 +83,11 @@ class EnergySettings:
             if not isinstance(getattr(self, name), bool):
                 raise SceneError(f"settings.{name}", f"must be true or false (got {getattr(self, name)!r})")
         object.__setattr__(self, "steps", check_int("settings.steps", self.steps, lo=2, hi=100_000))
-        object.__setattr__(self, "snap_tolerance", check_real("settings.snap_tolerance", self.snap_tolerance, lo=0, hi=0.1, lo_open=True))
+        object.__setattr__(
+            self,
+            "snap_tolerance",
+            check_real("settings.snap_tolerance", self.snap_tolerance, lo=0, hi=0.1, lo_open=True),
+        )
         object.__setattr__(self, "gtol", check_real("settings.gtol", self.gtol, lo=0, hi=1e-2, lo_open=True))
         object.__setattr__(self, "max_iterations", check_int("settings.max_iterations", self.max_iterations, lo=1))
         object.__setattr__(self, "memory", check_int("settings.memory", self.memory, lo=1, hi=100))
@@ -137,15 +142,24 @@ class ZeroRangeSettings:
         if len(rs) < 2 or len(set(rs)) != len(rs):
             raise SceneError("settings.ratios", "need at least two distinct process-zone ratios l_c / a")
         if self.rate is None and len(rs) < 3:
-            raise SceneError("settings.ratios", "a fitted rate (rate = None) needs at least three process-zone ratios; "
-                             "give three or more, or a fixed rate")
+            raise SceneError(
+                "settings.ratios",
+                "a fitted rate (rate = None) needs at least three process-zone ratios; "
+                "give three or more, or a fixed rate",
+            )
         object.__setattr__(self, "ratios", tuple(sorted(rs, reverse=True)))
-        object.__setattr__(self, "elements_per_process_zone",
-                           check_real("settings.elements_per_process_zone", self.elements_per_process_zone, lo=0.25, hi=64))
+        object.__setattr__(
+            self,
+            "elements_per_process_zone",
+            check_real("settings.elements_per_process_zone", self.elements_per_process_zone, lo=0.25, hi=64),
+        )
         if self.rate is not None:
             object.__setattr__(self, "rate", check_real("settings.rate", self.rate, lo=0, hi=4, lo_open=True))
-        object.__setattr__(self, "minimum_elements_per_radius",
-                           check_real("settings.minimum_elements_per_radius", self.minimum_elements_per_radius, lo=4, hi=1e4))
+        object.__setattr__(
+            self,
+            "minimum_elements_per_radius",
+            check_real("settings.minimum_elements_per_radius", self.minimum_elements_per_radius, lo=4, hi=1e4),
+        )
         check_choice("settings.potential", self.potential, {"exponential", "maugis_dugdale"})
         if not isinstance(self.normalise_area, bool):
             raise SceneError("settings.normalise_area", f"must be true or false (got {self.normalise_area!r})")

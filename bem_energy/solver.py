@@ -7,6 +7,7 @@ pulling step detaches (``continuation``); take the force maximum, refined where 
 or at the fold (``peak``).  Every minimisation is counted (``equilibria``); the grid and
 whether it resolves the process zone come from ``resolution``.
 """
+
 from __future__ import annotations
 
 import logging
@@ -34,8 +35,15 @@ from .resolution import (
 )
 from .settings import EnergySettings
 
-__all__ = ["pull_off", "EnergyInfo", "default_potential", "unresolved_process_zone", "finite_range_grid",
-           "MAX_DEFAULT_SIDE", "DEFAULT_ELEMENTS_PER_RADIUS"]
+__all__ = [
+    "pull_off",
+    "EnergyInfo",
+    "default_potential",
+    "unresolved_process_zone",
+    "finite_range_grid",
+    "MAX_DEFAULT_SIDE",
+    "DEFAULT_ELEMENTS_PER_RADIUS",
+]
 
 log = logging.getLogger("bem_energy")
 
@@ -65,21 +73,34 @@ class EnergyInfo(_EnergyInfoRequired, total=False):
     process_zone_elements_needed: float
 
 
-def pull_off(scene: Scene, settings: EnergySettings, *, spacing: float | None = None,
-             potential: Potential | None = None, callback=None, max_memory_gb: float = 8.0) -> Result:
+def pull_off(
+    scene: Scene,
+    settings: EnergySettings,
+    *,
+    spacing: float | None = None,
+    potential: Potential | None = None,
+    callback=None,
+    max_memory_gb: float = 8.0,
+) -> Result:
     """One finite-range pull-off (``potential`` defaults to the scene's adhesion)."""
     t0 = time.perf_counter()
     if settings.grid.periodic:
-        raise SceneError("grid.periodic", "the energy method models the infinite (non-periodic) half-space only; "
-                         "use periodic = false")
+        raise SceneError(
+            "grid.periodic",
+            "the energy method models the infinite (non-periodic) half-space only; use periodic = false",
+        )
     potential = potential if potential is not None else default_potential(scene)
     h = spacing if spacing is not None else settings.grid.spacing_for(scene.indenter.shape)
-    prob = build_problem(scene, h, potential, memory=settings.memory, max_memory_gb=max_memory_gb,
-                         kernel=settings.kernel)
+    prob = build_problem(
+        scene, h, potential, memory=settings.memory, max_memory_gb=max_memory_gb, kernel=settings.kernel
+    )
     face_elements = int(prob.face.sum())
     if settings.minimiser == "cvxpy" and face_elements > settings.max_face_elements_cvxpy:
-        raise SceneError("settings.minimiser", f"cvxpy is for small grids: {face_elements} face elements "
-                         f"> {settings.max_face_elements_cvxpy}; use lbfgsb or pk")
+        raise SceneError(
+            "settings.minimiser",
+            f"cvxpy is for small grids: {face_elements} face elements "
+            f"> {settings.max_face_elements_cvxpy}; use lbfgsb or pk",
+        )
     eq = Equilibria(prob, settings, scene.indenter.shape.equivalent_radius)
     approach_scale = critical_approach_scale(scene)
     adhesive = potential is not None
@@ -98,8 +119,17 @@ def pull_off(scene: Scene, settings: EnergySettings, *, spacing: float | None = 
     pull_scale = approach_scale + rho if adhesive else prob.spacing
     span = abs(d0) + 2.0 * approach_scale + 5.0 * rho + (0.0 if adhesive else prob.spacing)
     tolerance = settings.snap_tolerance * pull_scale
-    outcome = pull(eq, scene, path, d0, m, adhesive, step=span / settings.steps, snap_tolerance=tolerance,
-                   max_steps=20 * settings.steps + 100)
+    outcome = pull(
+        eq,
+        scene,
+        path,
+        d0,
+        m,
+        adhesive,
+        step=span / settings.steps,
+        snap_tolerance=tolerance,
+        max_steps=20 * settings.steps + 100,
+    )
     peak = force_maximum(eq, path, outcome.snap_off, adhesive, tolerance=tolerance)
     t3 = time.perf_counter()
 
@@ -115,9 +145,16 @@ def pull_off(scene: Scene, settings: EnergySettings, *, spacing: float | None = 
     msgs.extend(eq.work.messages())
     snap = outcome.snap_off
     curve = Curve(np.array(path.approach), np.array(path.force), np.array(path.contact_area))
-    info = EnergyInfo(minimiser=settings.minimiser, minimisations=eq.work.minimisations,
-                      evaluations=eq.work.evaluations, grid=list(prob.n), padded_grid=list(prob.padded),
-                      face_elements=face_elements, press_approach=float(d0), peak=peak.kind)
+    info = EnergyInfo(
+        minimiser=settings.minimiser,
+        minimisations=eq.work.minimisations,
+        evaluations=eq.work.evaluations,
+        grid=list(prob.n),
+        padded_grid=list(prob.padded),
+        face_elements=face_elements,
+        press_approach=float(d0),
+        peak=peak.kind,
+    )
     if potential is not None:
         info["range"] = potential.range
         info["potential"] = potential.kind
@@ -135,8 +172,9 @@ def pull_off(scene: Scene, settings: EnergySettings, *, spacing: float | None = 
         detached=not outcome.attached,
         detachment_approach=None if snap is None else snap.detached_approach,
         snapshots=tuple(outcome.snapshots),
-        last_stable=None if snap is None else snapshot(eq, snap.attached_approach, snap.attached_state,
-                                                       scene.outputs.fields),
+        last_stable=None
+        if snap is None
+        else snapshot(eq, snap.attached_approach, snap.attached_state, scene.outputs.fields),
         iterations=eq.work.iterations,
         residual=eq.work.worst_gradient,
         timings={"setup": t1 - t0, "press": t2 - t1, "pull": t3 - t2},

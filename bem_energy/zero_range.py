@@ -7,6 +7,7 @@ a fixed number of elements per l_c, and the sequence is extrapolated in l_c with
 rate: the finite-range shortfall is not a power law with one exponent over the ranges a grid
 can afford, and its local exponent differs between faces (see :func:`richardson`).
 """
+
 from __future__ import annotations
 
 import logging
@@ -24,8 +25,7 @@ from .potentials import Potential, process_zone_exponent, process_zone_modulus, 
 from .settings import ZeroRangeSettings
 from .solver import EnergyInfo, pull_off
 
-__all__ = ["zero_range", "richardson", "tail_bracket", "ZeroRangeInfo", "SequenceInfo", "COARSE_LIMIT",
-           "RATE_BRACKET"]
+__all__ = ["zero_range", "richardson", "tail_bracket", "ZeroRangeInfo", "SequenceInfo", "COARSE_LIMIT", "RATE_BRACKET"]
 
 #: a sequence whose finest process zone is above this (in units of a) cannot see the cornered
 #: faces' late convergence (their local rate passes 0.8 only below 0.04 a)
@@ -185,8 +185,14 @@ def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callb
         rho = range_for_process_zone(modulus=E, work=w, length=lc, exponent=k)
         spacing = min(lc / settings.elements_per_process_zone, a / settings.minimum_elements_per_radius)
         es = replace(settings.energy, grid=Grid(spacing=spacing))
-        log.info("range %d of %d: l_c/a = %g (rho = %.4g, %d elements per radius)", i, len(settings.ratios), r, rho,
-                 round(a / spacing))
+        log.info(
+            "range %d of %d: l_c/a = %g (rho = %.4g, %d elements per radius)",
+            i,
+            len(settings.ratios),
+            r,
+            rho,
+            round(a / spacing),
+        )
         res = pull_off(scene, es, spacing=spacing, potential=Potential(w, rho, settings.potential), callback=callback)
         runs.append((lc, rho, res))
     lcs = np.array([x[0] for x in runs])
@@ -203,23 +209,32 @@ def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callb
     F0, used_rate, est = richardson(lcs, Fs, settings.rate)
     finest = runs[-1][2]
     how = "fitted" if settings.rate is None else "fixed"
-    msgs = [f"zero-range limit by extrapolation in l_c (rate {how}: "
-            + ("none fits, two-term sqrt + linear fit" if used_rate is None else f"{used_rate:.3g}")
-            + ") over l_c/a = " + ", ".join(f"{r:g}" for r in settings.ratios)
-            + (", forces scaled to the nominal face area" if settings.normalise_area else "")
-            + f"; the curve, fields and pull-off approach are those of the finest range (rho = {runs[-1][1]:.4g}): "
-            "the approach at the force maximum of a finite range does not tend to the zero-range one "
-            "over this sequence (the maximum is broad and moves outward as the edge zone opens)"]
-    msgs.append("accuracy estimate: the distance from the extrapolated force to the limits the finest step "
-                f"allows for a tail going like l_c^q, q = {RATE_BRACKET[0]:g} ... {RATE_BRACKET[1]:g}; a bound if the "
-                "tail's rate lies there (validated on circle, square and triangle: see bem_energy.richardson)")
+    msgs = [
+        f"zero-range limit by extrapolation in l_c (rate {how}: "
+        + ("none fits, two-term sqrt + linear fit" if used_rate is None else f"{used_rate:.3g}")
+        + ") over l_c/a = "
+        + ", ".join(f"{r:g}" for r in settings.ratios)
+        + (", forces scaled to the nominal face area" if settings.normalise_area else "")
+        + f"; the curve, fields and pull-off approach are those of the finest range (rho = {runs[-1][1]:.4g}): "
+        "the approach at the force maximum of a finite range does not tend to the zero-range one "
+        "over this sequence (the maximum is broad and moves outward as the edge zone opens)"
+    ]
+    msgs.append(
+        "accuracy estimate: the distance from the extrapolated force to the limits the finest step "
+        f"allows for a tail going like l_c^q, q = {RATE_BRACKET[0]:g} ... {RATE_BRACKET[1]:g}; a bound if the "
+        "tail's rate lies there (validated on circle, square and triangle: see bem_energy.richardson)"
+    )
     if min(settings.ratios) > VALIDATED_FINEST_RATIO:
-        msgs.append(f"the finest l_c = {min(settings.ratios):g} a is coarser than the estimate is validated for "
-                    f"({VALIDATED_FINEST_RATIO:g} a): the tail may be slower than l_c^{RATE_BRACKET[0]:g} there")
+        msgs.append(
+            f"the finest l_c = {min(settings.ratios):g} a is coarser than the estimate is validated for "
+            f"({VALIDATED_FINEST_RATIO:g} a): the tail may be slower than l_c^{RATE_BRACKET[0]:g} there"
+        )
     if min(settings.ratios) > COARSE_LIMIT and not isinstance(scene.indenter.shape, Circle):
-        msgs.append(f"the sequence stops at l_c = {min(settings.ratios):g} a: faces with corners converge faster "
-                    "than the circle below 0.04 a, and such a sequence overshoots their zero-range limit by up to "
-                    "7 % (square, triangle: benchmarks/study_energy_zero_range.py); the default sequence reaches 0.01 a")
+        msgs.append(
+            f"the sequence stops at l_c = {min(settings.ratios):g} a: faces with corners converge faster "
+            "than the circle below 0.04 a, and such a sequence overshoots their zero-range limit by up to "
+            "7 % (square, triangle: benchmarks/study_energy_zero_range.py); the default sequence reaches 0.01 a"
+        )
     for lc, _rho, res in runs:
         msgs.extend(f"[l_c/a = {lc / a:g}] {m}" for m in res.messages)
     ok = all(x[2].converged and x[2].detached for x in runs) and math.isfinite(F0) and F0 > 0
@@ -232,7 +247,7 @@ def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callb
         for phase, v in res.timings.items():
             timings[phase] = timings.get(phase, 0.0) + v
     timings["extrapolation"] = max(0.0, (t1 - t0) - sum(timings.values()))
-    assert finest.face_area is not None      # pull_off reports its grid's face area
+    assert finest.face_area is not None  # pull_off reports its grid's face area
     return replace(
         finest,
         pulloff_force=float(F0),
@@ -242,19 +257,30 @@ def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callb
         timings=timings,
         messages=tuple(msgs),
         # finest comes from pull_off, whose info is an EnergyInfo
-        info=ZeroRangeInfo(**cast(EnergyInfo, finest.info), zero_range=SequenceInfo(
-            process_zone_ratios=[float(r) for r in settings.ratios],
-            ranges=[float(x[1]) for x in runs],
-            spacings=[float(x[2].grid_spacing) for x in runs],
-            pulloff_forces=Fs.tolist(), raw_pulloff_forces=raw.tolist(), pulloff_approaches=ds.tolist(),
-            rate=settings.rate, fitted_rate=used_rate if settings.rate is None else None,
-            coarse=min(settings.ratios) > COARSE_LIMIT)),
+        info=ZeroRangeInfo(
+            **cast(EnergyInfo, finest.info),
+            zero_range=SequenceInfo(
+                process_zone_ratios=[float(r) for r in settings.ratios],
+                ranges=[float(x[1]) for x in runs],
+                spacings=[float(x[2].grid_spacing) for x in runs],
+                pulloff_forces=Fs.tolist(),
+                raw_pulloff_forces=raw.tolist(),
+                pulloff_approaches=ds.tolist(),
+                rate=settings.rate,
+                fitted_rate=used_rate if settings.rate is None else None,
+                coarse=min(settings.ratios) > COARSE_LIMIT,
+            ),
+        ),
         stats=_sum_stats([x[2] for x in runs]),
         # forces scaled to the nominal area refer to the exact face; raw ones to the finest grid's
         face_area=None if settings.normalise_area else finest.face_area,
         discretisation="extrapolated",
         # the finest grid's stiffness bar, and the extrapolation's estimate for the force (a
         # failed or unvalidated extrapolation has no bar: its force is not checked)
-        error_bars=error_bars(scene, spacing=finest.grid_spacing, face_area=finest.face_area,
-                              zero_range_estimate=float(est / F0) if ok and math.isfinite(est) and F0 > 0 else None),
+        error_bars=error_bars(
+            scene,
+            spacing=finest.grid_spacing,
+            face_area=finest.face_area,
+            zero_range_estimate=float(est / F0) if ok and math.isfinite(est) and F0 > 0 else None,
+        ),
     )

@@ -6,6 +6,7 @@ pressure that holds the profile h flat).  The displacement of the whole grid is 
 u = d C x1 - C xh.  One solve of the two systems gives the state at every approach, until
 an element detaches or a gap closes.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -76,8 +77,13 @@ def no_contact(problem: Problem) -> ContactSolution:
     return ContactSolution(np.zeros(problem.face.shape, bool), np.zeros(0), np.zeros(0), zero, zero, 0, 0.0, True)
 
 
-def solve_contact_set(problem: Problem, contact: np.ndarray, settings: GriffithSettings,
-                      warm_start: ContactSolution | None, counters: WorkCounters) -> ContactSolution:
+def solve_contact_set(
+    problem: Problem,
+    contact: np.ndarray,
+    settings: GriffithSettings,
+    warm_start: ContactSolution | None,
+    counters: WorkCounters,
+) -> ContactSolution:
     """Solve C_SS x1 = 1 and (curved faces) C_SS xh = h on the contact set by preconditioned
     CG, warm-started from a neighbouring set's solution; on a smaller window of the grid when
     the set fits into one (``bem_griffith.windows``).  Never raises on non-convergence: the
@@ -97,6 +103,7 @@ def solve_contact_set(problem: Problem, contact: np.ndarray, settings: GriffithS
 
     precondition = None
     if inverse is not None:
+
         def precondition(residual):
             counters.operator_applications += 1
             return operator.apply_symbol(residual, contact_in_window, inverse)
@@ -110,28 +117,45 @@ def solve_contact_set(problem: Problem, contact: np.ndarray, settings: GriffithS
 
     def image_on_grid(cg: CGResult) -> np.ndarray:
         if window is None:
-            assert cg.image is not None      # CG is restricted to the contact set, so it returns C x
+            assert cg.image is not None  # CG is restricted to the contact set, so it returns C x
             return cg.image
         # the gaps of the whole face need C x beyond the window: one operator application
         counters.operator_applications += 1
         return problem.operator.apply_masked(cg.x, contact)
 
     n = int(contact.sum())
+
     def solve(rhs: np.ndarray, x0: np.ndarray | None) -> CGResult:
-        return conjugate_gradient(apply_operator, rhs, x0, rtol=settings.rtol, maxiter=settings.maxiter,
-                                  precondition=precondition, restrict=contact_in_window)
+        return conjugate_gradient(
+            apply_operator,
+            rhs,
+            x0,
+            rtol=settings.rtol,
+            maxiter=settings.maxiter,
+            precondition=precondition,
+            restrict=contact_in_window,
+        )
 
     unit = solve(np.ones(n), initial_guess(None if warm_start is None else warm_start.pressure_per_approach))
     iterations, residual, converged = unit.iterations, unit.residual, unit.converged
     if problem.flat:
         profile_pressure, profile_displacement = np.zeros(n), np.zeros(problem.face.shape)
     else:
-        profile = solve(problem.height[contact],
-                        initial_guess(None if warm_start is None else warm_start.profile_pressure))
+        profile = solve(
+            problem.height[contact], initial_guess(None if warm_start is None else warm_start.profile_pressure)
+        )
         profile_pressure, profile_displacement = profile.x, image_on_grid(profile)
         iterations += profile.iterations
         residual = max(residual, profile.residual)
         converged = converged and profile.converged
     counters.record_solve(iterations, residual, converged)
-    return ContactSolution(contact.copy(), unit.x, profile_pressure, image_on_grid(unit), profile_displacement,
-                           iterations, residual, converged)
+    return ContactSolution(
+        contact.copy(),
+        unit.x,
+        profile_pressure,
+        image_on_grid(unit),
+        profile_displacement,
+        iterations,
+        residual,
+        converged,
+    )

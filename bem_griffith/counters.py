@@ -1,4 +1,5 @@
 """The work a Griffith solve does, counted as it goes and reported as ``SolverStats``."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -55,6 +56,11 @@ class WorkCounters:
     def stats(self, *, events: int, face_elements: int) -> SolverStats:
         """The method-neutral counters of a finished solve: an unsettled cascade counts as an
         unconverged sub-solve, like a CG run that stopped above its tolerance."""
-        return SolverStats(linear_solves=self.contact_solves, linear_iterations=self.cg_iterations,
-                           operator_applications=self.operator_applications, events=events,
-                           unconverged=self.unconverged_solves + self.unsettled_cascades, unknowns=face_elements)
+        return SolverStats(
+            linear_solves=self.contact_solves,
+            linear_iterations=self.cg_iterations,
+            operator_applications=self.operator_applications,
+            events=events,
+            unconverged=self.unconverged_solves + self.unsettled_cascades,
+            unknowns=face_elements,
+        )

@@ -37,6 +37,7 @@ so the ratio there carries the homogeneous circle's staircase jitter (+-0.2 %): 
 leaves residuals of 0.24 % and 0.27 %, which u contains.  Off the sweep (40 and 56 per
 radius) the ratio stays within u of the fit at all four |k| >= 0.9 (tested at +-0.9 and +-0.95).
 """
+
 from __future__ import annotations
 
 import math
@@ -108,9 +109,11 @@ def calibration(k: float) -> tuple[float, float]:
     SceneError naming the setting and the covered range."""
     exponents, ratios, uncertainties = _table()
     if not exponents[0] <= k <= exponents[-1]:
-        raise SceneError("settings.graded_criterion",
-                         f"the calibrated criterion covers {exponents[0]:g} <= k <= {exponents[-1]:g} (got material.exponent "
-                         f"k = {k:g}); use graded_criterion = 'eq42' (uncalibrated, any -1 < k < 1) there")
+        raise SceneError(
+            "settings.graded_criterion",
+            f"the calibrated criterion covers {exponents[0]:g} <= k <= {exponents[-1]:g} (got material.exponent "
+            f"k = {k:g}); use graded_criterion = 'eq42' (uncalibrated, any -1 < k < 1) there",
+        )
     return interpolate(exponents, ratios, uncertainties, k)
 
 

@@ -16,6 +16,7 @@ Between events the contact set is fixed and the state is linear in the approach
 (``bem_griffith.contact_set``), so the event driver computes the next approach at which an
 element reaches sigma_c or a gap closes exactly; the fixed-step driver moves by ``step``.
 """
+
 from __future__ import annotations
 
 import logging
@@ -77,8 +78,9 @@ def gap_coefficients(problem: Problem, solution: ContactSolution):
     return free, slope, offset
 
 
-def next_event(problem: Problem, solution: ContactSolution, approach: float, target: float,
-               rule: DetachmentRule | None = None) -> float:
+def next_event(
+    problem: Problem, solution: ContactSolution, approach: float, target: float, rule: DetachmentRule | None = None
+) -> float:
     """The nearest approach between ``approach`` and ``target`` (in the direction of travel)
     at which an element of the contact set meets the detachment ``rule`` (default: Eq. 22,
     sigma_c) or a free element's gap closes; ``target`` if none."""
@@ -114,23 +116,40 @@ def _certainly_detached(problem: Problem, contact: np.ndarray, approach: float, 
     """Whether no face of the remaining area can hold at ``approach``: |d| beyond the margin
     times the circle's critical approach of that area (Eq. 14 bounds every flat face of a
     homogeneous body by the circle of its area)."""
-    if not (problem.flat and settings.stop_when_certainly_detached and approach < 0
-            and problem.effective_modulus is not None and problem.work_of_adhesion > 0
-            and problem.circle_critical_approach is not None):
+    if not (
+        problem.flat
+        and settings.stop_when_certainly_detached
+        and approach < 0
+        and problem.effective_modulus is not None
+        and problem.work_of_adhesion > 0
+        and problem.circle_critical_approach is not None
+    ):
         return False
     area = float(contact.sum()) * problem.cell_area
     upper = problem.circle_critical_approach(area)
     margin = 1.0 + max(settings.certainty_margin, 2.0 * problem.spacing / math.sqrt(area / math.pi))
     if abs(approach) > margin * abs(upper):
-        log.debug("cascade at d = %.6g cut short with %d elements left: |d| > %.3g |d_c,upper| of the "
-                  "remaining area (Eq. 14)", approach, int(contact.sum()), margin)
+        log.debug(
+            "cascade at d = %.6g cut short with %d elements left: |d| > %.3g |d_c,upper| of the "
+            "remaining area (Eq. 14)",
+            approach,
+            int(contact.sum()),
+            margin,
+        )
         return True
     return False
 
 
-def cascade(problem: Problem, solution: ContactSolution, approach: float, settings: GriffithSettings,
-            counters: WorkCounters, messages: list, direction: float = -1.0,
-            rule: DetachmentRule | None = None) -> ContactSolution:
+def cascade(
+    problem: Problem,
+    solution: ContactSolution,
+    approach: float,
+    settings: GriffithSettings,
+    counters: WorkCounters,
+    messages: list,
+    direction: float = -1.0,
+    rule: DetachmentRule | None = None,
+) -> ContactSolution:
     """Detach / re-attach at the fixed approach until no element meets the detachment
     ``rule`` (default: Eq. 22, sigma_c) and no gap is negative; returns ``solution`` itself
     when nothing changes.
@@ -176,17 +195,30 @@ def pull_targets(scene: Scene, pressed_approach: float, problem: Problem) -> tup
     return [*scene.loading.turning_points, final], user
 
 
-def _next_approach(problem: Problem, solution: ContactSolution, approach: float, target: float,
-                   settings: GriffithSettings, rule: DetachmentRule) -> float:
+def _next_approach(
+    problem: Problem,
+    solution: ContactSolution,
+    approach: float,
+    target: float,
+    settings: GriffithSettings,
+    rule: DetachmentRule,
+) -> float:
     if settings.driver == "event":
         return next_event(problem, solution, approach, target, rule)
-    assert settings.step is not None   # GriffithSettings requires a step for the fixed-step driver
+    assert settings.step is not None  # GriffithSettings requires a step for the fixed-step driver
     step = settings.step if target > approach else -settings.step
     return approach + step if (approach + step - target) * np.sign(step) < 0 else target
 
 
-def pull(problem: Problem, scene: Scene, settings: GriffithSettings, counters: WorkCounters,
-         pressed_approach: float, pressed: ContactSolution, recorder: PullRecorder) -> PullOutcome:
+def pull(
+    problem: Problem,
+    scene: Scene,
+    settings: GriffithSettings,
+    counters: WorkCounters,
+    pressed_approach: float,
+    pressed: ContactSolution,
+    recorder: PullRecorder,
+) -> PullOutcome:
     """Drive the approach through the scene's turning points to the final pull, cascading at
     every event (or step), until the face detaches, the final target is reached or the event
     limit stops it; every curve point and snapshot goes to ``recorder``."""
@@ -205,12 +237,25 @@ def pull(problem: Problem, scene: Scene, settings: GriffithSettings, counters: W
             if settings.driver == "event":
                 # admissible: at an event the first element sits exactly at sigma_c (a peak)
                 recorder.point(approach, solution)
-            solution = cascade(problem, solution, approach, settings, counters, outcome.messages,
-                               1.0 if target > previous else -1.0, rule)
+            solution = cascade(
+                problem,
+                solution,
+                approach,
+                settings,
+                counters,
+                outcome.messages,
+                1.0 if target > previous else -1.0,
+                rule,
+            )
             if solution is not before:
                 if not solution.attached:
-                    outcome.last_stable = Snapshot(float(approach), before.force(approach, cell), before.contact.copy(),
-                                                   problem.spacing, problem.origin)
+                    outcome.last_stable = Snapshot(
+                        float(approach),
+                        before.force(approach, cell),
+                        before.contact.copy(),
+                        problem.spacing,
+                        problem.origin,
+                    )
                     outcome.detachment_approach = approach
                 recorder.point(approach, solution)
             elif settings.driver == "fixed_step":

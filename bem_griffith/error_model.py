@@ -21,6 +21,7 @@ case.  ``c`` and ``plateau`` are fitted by ``python benchmarks/study_error_model
   flat circle this is a calibration residual (``role="calibration"``).  With Eq. 42's
   uncalibrated constant the pull-off has no bar (it misses Eq. 39 by up to 43 %).
 """
+
 from __future__ import annotations
 
 import functools
@@ -41,18 +42,31 @@ def model() -> dict:
     return json.loads(resources.files(__package__).joinpath("error_model.json").read_text())
 
 
-def _bar(quantity: str, N: float, area_defect: float, exponent: float, *, c: float | None = None,
-         source: str = "", role: str = "validation") -> ErrorBar:
+def _bar(
+    quantity: str,
+    N: float,
+    area_defect: float,
+    exponent: float,
+    *,
+    c: float | None = None,
+    source: str = "",
+    role: str = "validation",
+) -> ErrorBar:
     m = model()["quantities"][quantity]
     if c is None:
         c = m["c"] if N >= model()["fit_from"] else m["coarse_c"]
     value = c / N + m["plateau"] + exponent * area_defect
-    return ErrorBar(value, f"{c:.3g}/N + {m['plateau']:g} + {exponent:g} |dA/A| at N = {N:.3g} "
-                           f"({source or 'flat circle'}; benchmarks/study_error_models.py)", role)
+    return ErrorBar(
+        value,
+        f"{c:.3g}/N + {m['plateau']:g} + {exponent:g} |dA/A| at N = {N:.3g} "
+        f"({source or 'flat circle'}; benchmarks/study_error_models.py)",
+        role,
+    )
 
 
-def error_bars(scene: Scene, *, spacing: float, face_area: float, graded_criterion: str,
-               criterion: str = "paper") -> dict[str, ErrorBar]:
+def error_bars(
+    scene: Scene, *, spacing: float, face_area: float, graded_criterion: str, criterion: str = "paper"
+) -> dict[str, ErrorBar]:
     """The bars of a solve of ``scene`` on a grid of element side ``spacing`` whose face has area
     ``face_area``, with ``graded_criterion`` and ``criterion`` (``GriffithSettings``).  The
     pull-off bars are the paper criterion's (Eq. 22) model; another detachment criterion has
@@ -66,8 +80,9 @@ def error_bars(scene: Scene, *, spacing: float, face_area: float, graded_criteri
     if not profile.is_flat:
         # the stiffness of a curved profile is the pressed contact's, which the study does not cover
         if k == 0:
-            bars["pulloff_force"] = ErrorBar(SPHERE_FORCE_C / N, f"{SPHERE_FORCE_C:g}/N at N = {N:.3g} (JKR sphere, "
-                                                                 "docs/accuracy.md)")
+            bars["pulloff_force"] = ErrorBar(
+                SPHERE_FORCE_C / N, f"{SPHERE_FORCE_C:g}/N at N = {N:.3g} (JKR sphere, docs/accuracy.md)"
+            )
         return bars
     bars["stiffness"] = _bar("stiffness", N, defect, (1 + k) / 2, source="flat circle, square, graded circle")
     if scene.adhesion.work_of_adhesion == 0 or criterion != "paper":
@@ -79,8 +94,9 @@ def error_bars(scene: Scene, *, spacing: float, face_area: float, graded_criteri
         else:
             m = model()["quantities"]["pulloff_force"]
             c = m["cornered_c"] if N >= model()["fit_from"] else m["cornered_coarse_c"]
-            bars["pulloff_force"] = _bar("pulloff_force", N, defect, 0.75, c=c, source="square and triangle against "
-                                         "their 1/N limits")
+            bars["pulloff_force"] = _bar(
+                "pulloff_force", N, defect, 0.75, c=c, source="square and triangle against their 1/N limits"
+            )
         return bars
     if graded_criterion != "calibrated" or N < 32:
         return bars
@@ -94,12 +110,13 @@ def error_bars(scene: Scene, *, spacing: float, face_area: float, graded_criteri
     c = (m["c"] if fine else m["coarse_c"]) if circle else (m["cornered_c"] if fine else m["cornered_coarse_c"])
     t = (c + first) / N + m["plateau"] + uncertainty / ratio + (3 + k) / 4 * defect
     role = "calibration" if circle else "validation"
-    src = (f"({c:.3g} + {first:.2g})/N + {m['plateau']:g} + u/r {uncertainty / ratio:.2g} + {(3 + k) / 4:g} |dA/A| "
-           f"at N = {N:.3g} (bem_griffith.criterion, benchmarks/study_griffith_graded.py)")
+    src = (
+        f"({c:.3g} + {first:.2g})/N + {m['plateau']:g} + u/r {uncertainty / ratio:.2g} + {(3 + k) / 4:g} |dA/A| "
+        f"at N = {N:.3g} (bem_griffith.criterion, benchmarks/study_griffith_graded.py)"
+    )
     bars["pulloff_force"] = ErrorBar(t, src, role)
     stiff = bars["stiffness"].relative
     # the approach is not what the calibration fitted (the force is): d_c = F_A / K tests the
     # calibrated force against the independently computed stiffness
     bars["pulloff_approach"] = ErrorBar(t + stiff, src + " + the stiffness bar")
     return bars
-

@@ -1,4 +1,5 @@
 """Conjugate gradients for the symmetric positive definite contact systems C_SS x = b."""
+
 from __future__ import annotations
 
 import math
@@ -28,16 +29,23 @@ class CGResult:
     image: np.ndarray | None = None
 
 
-def conjugate_gradient(matvec: Callable, b: np.ndarray, x0: np.ndarray | None = None,
-                       *, rtol: float = 1e-10, maxiter: int = 1000,
-                       precondition: Callable[[np.ndarray], np.ndarray] | None = None,
-                       restrict: np.ndarray | None = None) -> CGResult:
+def conjugate_gradient(
+    matvec: Callable,
+    b: np.ndarray,
+    x0: np.ndarray | None = None,
+    *,
+    rtol: float = 1e-10,
+    maxiter: int = 1000,
+    precondition: Callable[[np.ndarray], np.ndarray] | None = None,
+    restrict: np.ndarray | None = None,
+) -> CGResult:
     """(Preconditioned) CG for A x = b, warm-started from ``x0``.
 
     With ``restrict`` (a boolean mask), ``matvec`` returns the operator's image on the whole
     grid, the system is its restriction to the mask, and the full-grid image C x of the
     solution is accumulated alongside at no extra operator cost.  Never raises on
     non-convergence: the result says so, with the relative residual reached."""
+
     def apply(v):
         full = matvec(v)
         return (full[restrict], full) if restrict is not None else (full, None)
@@ -45,7 +53,7 @@ def conjugate_gradient(matvec: Callable, b: np.ndarray, x0: np.ndarray | None = 
     b_norm = math.sqrt(_dot(b, b))
     if x0 is None:
         x = np.zeros_like(b)
-        residual = b.copy()                       # r = b - A x
+        residual = b.copy()  # r = b - A x
         full_image = None if restrict is None else np.zeros(restrict.shape)
     else:
         x = x0.copy()
@@ -54,17 +62,17 @@ def conjugate_gradient(matvec: Callable, b: np.ndarray, x0: np.ndarray | None = 
         full_image = None if full_image is None else full_image.copy()
     if b_norm == 0.0:
         return CGResult(np.zeros_like(b), 0, 0.0, True, None if restrict is None else np.zeros(restrict.shape))
-    preconditioned = precondition(residual) if precondition else residual      # z = M r
-    direction = preconditioned.copy()                                          # p
+    preconditioned = precondition(residual) if precondition else residual  # z = M r
+    direction = preconditioned.copy()  # p
     r_dot_z = _dot(residual, preconditioned)
     relative_residual = math.sqrt(_dot(residual, residual)) / b_norm
     iterations = 0
     while relative_residual > rtol and iterations < maxiter:
-        image_of_direction, full_image_of_direction = apply(direction)         # A p
-        curvature = _dot(direction, image_of_direction)                        # p.A p
+        image_of_direction, full_image_of_direction = apply(direction)  # A p
+        curvature = _dot(direction, image_of_direction)  # p.A p
         if not curvature > 0.0:  # loss of positive definiteness: stop and report, never NaN
             break
-        step = r_dot_z / curvature                                             # alpha
+        step = r_dot_z / curvature  # alpha
         x += step * direction
         residual -= step * image_of_direction
         if full_image is not None:
@@ -75,7 +83,7 @@ def conjugate_gradient(matvec: Callable, b: np.ndarray, x0: np.ndarray | None = 
             break
         preconditioned = precondition(residual) if precondition else residual
         r_dot_z_new = _dot(residual, preconditioned)
-        direction *= r_dot_z_new / r_dot_z                                     # beta
+        direction *= r_dot_z_new / r_dot_z  # beta
         direction += preconditioned
         r_dot_z = r_dot_z_new
     return CGResult(x, iterations, relative_residual, relative_residual <= rtol, full_image)

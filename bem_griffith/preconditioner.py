@@ -1,4 +1,5 @@
 """The Fourier preconditioner of the contact systems C_SS x = b."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -8,8 +9,9 @@ from halfspace.kernel import lattice_symbol, point_kernel_transform
 __all__ = ["inverse_lattice_symbol"]
 
 
-def inverse_lattice_symbol(padded_shape: tuple[int, int], spacing: float,
-                           point_kernel: tuple[float, float]) -> np.ndarray:
+def inverse_lattice_symbol(
+    padded_shape: tuple[int, int], spacing: float, point_kernel: tuple[float, float]
+) -> np.ndarray:
     """1 / (the element lattice's Fourier symbol) on ``padded_shape``, in single precision.
 
     ``point_kernel`` is (coefficient A, exponent k) of the point Green's function

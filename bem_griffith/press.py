@@ -1,5 +1,6 @@
 """Pressing without adhesion, as the paper does before it pulls: to an approach, to a force,
 or (a flat face) just touching."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -25,13 +26,14 @@ class PressResult:
     force: float
     contact: np.ndarray
     contact_area: float
-    stiffness: float          # dF/dd with the contact set held fixed (the unloading stiffness)
+    stiffness: float  # dF/dd with the contact set held fixed (the unloading stiffness)
     spacing: float
     origin: tuple[float, float]
 
 
-def press_to_approach(problem: Problem, approach: float, settings: GriffithSettings,
-                      counters: WorkCounters) -> ContactSolution:
+def press_to_approach(
+    problem: Problem, approach: float, settings: GriffithSettings, counters: WorkCounters
+) -> ContactSolution:
     """Non-adhesive contact at ``approach``: an active-set iteration (drop tensile elements,
     add penetrating ones, re-solve) from the geometric overlap; returns the solved state."""
     face = problem.face
@@ -55,8 +57,9 @@ def press_to_approach(problem: Problem, approach: float, settings: GriffithSetti
     raise RuntimeError("press: the active set did not settle")  # pragma: no cover
 
 
-def pressed_state(problem: Problem, scene: Scene, settings: GriffithSettings,
-                  counters: WorkCounters) -> tuple[float, ContactSolution]:
+def pressed_state(
+    problem: Problem, scene: Scene, settings: GriffithSettings, counters: WorkCounters
+) -> tuple[float, ContactSolution]:
     """The approach the scene's press reaches and the solved contact state there."""
     loading = scene.loading
     if problem.flat and (loading.press_approach is None or loading.press_approach <= 0) and loading.press_force is None:
@@ -66,10 +69,13 @@ def pressed_state(problem: Problem, scene: Scene, settings: GriffithSettings,
         return loading.press_approach, press_to_approach(problem, loading.press_approach, settings, counters)
     # press to a force: F(d) is continuous and increasing without adhesion; bracket, then Brent
     target = loading.press_force
-    assert target is not None      # Loading gives a press approach, a press force or neither (above)
+    assert target is not None  # Loading gives a press approach, a press force or neither (above)
     if target == 0.0:
-        lowest = (problem.face.copy() if problem.flat
-                  else problem.face & (problem.height <= problem.height[problem.face].min()))
+        lowest = (
+            problem.face.copy()
+            if problem.flat
+            else problem.face & (problem.height <= problem.height[problem.face].min())
+        )
         return 0.0, solve_contact_set(problem, lowest, settings, None, counters)
     cell = problem.cell_area
     lowest_height = float(problem.height[problem.face].min())
@@ -82,6 +88,9 @@ def pressed_state(problem: Problem, scene: Scene, settings: GriffithSettings,
     upper = lowest_height + problem.spacing
     while force_excess(upper) < 0:
         upper = lowest_height + 2 * (upper - lowest_height)
-    approach = optimize.brentq(force_excess, lowest_height + 1e-12 * (upper - lowest_height), upper,
-                               xtol=1e-12 * upper, rtol=1e-12)
-    return approach, states[approach] if approach in states else press_to_approach(problem, approach, settings, counters)
+    approach = optimize.brentq(
+        force_excess, lowest_height + 1e-12 * (upper - lowest_height), upper, xtol=1e-12 * upper, rtol=1e-12
+    )
+    return approach, states[approach] if approach in states else press_to_approach(
+        problem, approach, settings, counters
+    )

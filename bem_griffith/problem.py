@@ -1,5 +1,6 @@
 """The discretised problem: the face on its grid, the half-space operator, the profile and the
 critical stress of the local Griffith criterion, fixed for the duration of a solve."""
+
 from __future__ import annotations
 
 import math
@@ -96,7 +97,7 @@ def max_elements_per_radius(scene: Scene, max_memory_gb: float | None = None) ->
     fits, too_fine = 1.0, 2.0
     while need(too_fine) <= limit:
         fits, too_fine = too_fine, 2 * too_fine
-    for _ in range(40):                      # need(n) grows like n^2: bisect to a whole number
+    for _ in range(40):  # need(n) grows like n^2: bisect to a whole number
         middle = 0.5 * (fits + too_fine)
         fits, too_fine = (middle, too_fine) if need(middle) <= limit else (fits, middle)
     return math.floor(fits)
@@ -109,11 +110,14 @@ def build_problem(scene: Scene, settings: GriffithSettings) -> Problem:
     shape = scene.indenter.shape
     periodic = settings.grid.periodic
     if periodic and not isinstance(material, Homogeneous):
-        raise SceneError("grid.periodic", "the periodic half-space is implemented for homogeneous bodies only "
-                         "(the graded kernel's image sum needs its own regularisation); use periodic = false")
+        raise SceneError(
+            "grid.periodic",
+            "the periodic half-space is implemented for homogeneous bodies only "
+            "(the graded kernel's image sum needs its own regularisation); use periodic = false",
+        )
     h = settings.grid.spacing_for(shape)
     if periodic:
-        assert settings.grid.period is not None      # Grid requires the period when periodic
+        assert settings.grid.period is not None  # Grid requires the period when periodic
         raster = rasterise_periodic(shape, h, settings.grid.period)
     else:
         raster = rasterise(shape, h)
@@ -122,12 +126,16 @@ def build_problem(scene: Scene, settings: GriffithSettings) -> Problem:
     if periodic and nx > 1024:
         # the kernel's exact image sum costs 33^2 Love evaluations per coefficient, growing like
         # n^2: minutes beyond 1024^2
-        raise SceneError("grid.period", f"a periodic cell of {nx} x {ny} elements (> 1024 across) is too large for the "
-                         "image sum of its kernel; coarsen the grid or shrink the period")
+        raise SceneError(
+            "grid.period",
+            f"a periodic cell of {nx} x {ny} elements (> 1024 across) is too large for the "
+            "image sum of its kernel; coarsen the grid or shrink the period",
+        )
     if need > settings.max_memory_gb:
         raise SceneError(
             "settings.max_memory_gb",
-            f"a {nx} x {ny} grid needs about {need:.1f} GB (> {settings.max_memory_gb:g}); raise max_memory_gb or coarsen the grid",
+            f"a {nx} x {ny} grid needs about {need:.1f} GB (> {settings.max_memory_gb:g}); "
+            "raise max_memory_gb or coarsen the grid",
         )
     w = scene.adhesion.work_of_adhesion
     padded = padded_shape(nx, ny)
@@ -145,18 +153,31 @@ def build_problem(scene: Scene, settings: GriffithSettings) -> Problem:
         sigma_c = theory.graded_critical_stress(E0=E0, c0=c0, k=k, work=w, spacing=h)
         if w > 0:
             sigma_c *= stress_factor(k, settings.graded_criterion)
-        circle_approach = ((lambda area: theory.graded_critical_approach(E0=E0, c0=c0, k=k,
-                                                                         radius=math.sqrt(area / math.pi), work=w))
-                           if w > 0 else None)
+        circle_approach = (
+            (lambda area: theory.graded_critical_approach(E0=E0, c0=c0, k=k, radius=math.sqrt(area / math.pi), work=w))
+            if w > 0
+            else None
+        )
     else:  # pragma: no cover - Scene validates the material
         raise SceneError("material", f"unsupported material {type(material).__name__}")
     operator = HalfSpaceOperator(kernel, (nx, ny), settings.workers, periodic=periodic)
     X, Y = raster.centres()
     height = scene.indenter.profile.height(X, Y)
-    inverse = (inverse_lattice_symbol(operator.padded_shape, h, point_kernel)
-               if settings.preconditioner == "fourier" else None)
-    return Problem(operator=operator, face=raster.mask, height=np.asarray(height, float), spacing=h,
-                   origin=raster.origin, critical_stress=sigma_c, flat=scene.indenter.profile.is_flat,
-                   effective_modulus=E, work_of_adhesion=w, inverse_symbol=inverse,
-                   circle_critical_approach=circle_approach, point_kernel=point_kernel,
-                   windows=WindowMemo() if settings.shrink_window and not periodic else None)
+    inverse = (
+        inverse_lattice_symbol(operator.padded_shape, h, point_kernel) if settings.preconditioner == "fourier" else None
+    )
+    return Problem(
+        operator=operator,
+        face=raster.mask,
+        height=np.asarray(height, float),
+        spacing=h,
+        origin=raster.origin,
+        critical_stress=sigma_c,
+        flat=scene.indenter.profile.is_flat,
+        effective_modulus=E,
+        work_of_adhesion=w,
+        inverse_symbol=inverse,
+        circle_critical_approach=circle_approach,
+        point_kernel=point_kernel,
+        windows=WindowMemo() if settings.shrink_window and not periodic else None,
+    )

@@ -1,5 +1,6 @@
 """What the pull records as it goes: the force-approach curve, the snapshots the scene asks
 for, and the caller's progress callback."""
+
 from __future__ import annotations
 
 from collections.abc import Callable
@@ -18,8 +19,13 @@ class PullRecorder:
     """Collects curve points (approach, force, contact area) and snapshots at the requested
     approaches; ``callback(approach, force, contact_area)`` sees every curve point."""
 
-    def __init__(self, problem: Problem, snapshot_approaches, fields: bool,
-                 callback: Callable[[float, float, float], None] | None = None):
+    def __init__(
+        self,
+        problem: Problem,
+        snapshot_approaches,
+        fields: bool,
+        callback: Callable[[float, float, float], None] | None = None,
+    ):
         self.problem = problem
         self.fields = fields
         self.callback = callback
@@ -53,8 +59,17 @@ class PullRecorder:
                 pressure[solution.contact] = solution.pressure(approach)
                 displacement = solution.displacement(approach)
             force = solution.force(approach, problem.cell_area) if solution.attached else 0.0
-            self.snapshots.append(Snapshot(float(approach), force, solution.contact.copy(), problem.spacing,
-                                           problem.origin, pressure, displacement))
+            self.snapshots.append(
+                Snapshot(
+                    float(approach),
+                    force,
+                    solution.contact.copy(),
+                    problem.spacing,
+                    problem.origin,
+                    pressure,
+                    displacement,
+                )
+            )
 
     def curve(self) -> Curve:
         return Curve(np.array(self.approach), np.array(self.force), np.array(self.contact_area))

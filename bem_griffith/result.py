@@ -1,5 +1,6 @@
 """Assembling a Griffith solve's ``Result``: the pull-off point from the recorded curve,
 convergence and messages, typed work counters, and the method's own diagnostics."""
+
 from __future__ import annotations
 
 import logging
@@ -23,16 +24,16 @@ log = logging.getLogger("bem_griffith")
 
 
 class _GriffithInfoBase(TypedDict):
-    matvecs: int                  # operator applications (= stats.operator_applications)
-    solves: int                   # contact-set solves (= stats.linear_solves)
-    events: int                   # driver steps (= stats.events)
-    grid: list[int]               # [nx, ny] of the face's grid
-    face_elements: int            # elements of the face (= stats.unknowns)
-    critical_stress: float        # sigma_c as used (calibrated for graded bodies)
-    press_approach: float         # the approach the press reached
-    cascades_cut: int             # cascades ended early by the Eq. 14 certainty bound
-    windowed_solves: int          # contact-set solves on a smaller window of the grid
-    criterion: str                # the detachment rule: "paper" (Eq. 22) or "stress_intensity"
+    matvecs: int  # operator applications (= stats.operator_applications)
+    solves: int  # contact-set solves (= stats.linear_solves)
+    events: int  # driver steps (= stats.events)
+    grid: list[int]  # [nx, ny] of the face's grid
+    face_elements: int  # elements of the face (= stats.unknowns)
+    critical_stress: float  # sigma_c as used (calibrated for graded bodies)
+    press_approach: float  # the approach the press reached
+    cascades_cut: int  # cascades ended early by the Eq. 14 certainty bound
+    windowed_solves: int  # contact-set solves on a smaller window of the grid
+    criterion: str  # the detachment rule: "paper" (Eq. 22) or "stress_intensity"
 
 
 class GriffithInfo(_GriffithInfoBase, total=False):
@@ -40,7 +41,7 @@ class GriffithInfo(_GriffithInfoBase, total=False):
     are present for graded bodies with adhesion and k != 0 only."""
 
     graded_criterion: Literal["calibrated", "eq42"]
-    criterion_ratio: float        # r(k) that divides Eq. 42's sigma_c (calibrated only)
+    criterion_ratio: float  # r(k) that divides Eq. 42's sigma_c (calibrated only)
     criterion_uncertainty: float  # u(k), r's uncertainty (calibrated only)
 
 
@@ -53,19 +54,32 @@ def graded_criterion_note(scene: Scene, settings: GriffithSettings) -> tuple[dic
     k = material.exponent
     if settings.graded_criterion == "calibrated":
         r, u = calibration(k)
-        return ({"graded_criterion": "calibrated", "criterion_ratio": r, "criterion_uncertainty": u},
-                f"graded criterion: Eq. 42's sigma_c / {r:.4f}, calibrated so that the flat circle follows "
-                f"the homogeneous one on the same grid (+-{100 * u:.2f} %, fitted over 32-181 elements per "
-                "radius); other faces inherit the factor (bem_griffith.criterion)")
-    return ({"graded_criterion": "eq42"},
-            "graded criterion kappa(k) (Eq. 42) is not calibrated for k != 0: on the circle the pull-off "
-            "force stays 43 % below (k = -0.75) to 7 % above (k = 0.5) Eq. 39 under refinement "
-            "(benchmarks/study_griffith_graded.py)")
+        return (
+            {"graded_criterion": "calibrated", "criterion_ratio": r, "criterion_uncertainty": u},
+            f"graded criterion: Eq. 42's sigma_c / {r:.4f}, calibrated so that the flat circle follows "
+            f"the homogeneous one on the same grid (+-{100 * u:.2f} %, fitted over 32-181 elements per "
+            "radius); other faces inherit the factor (bem_griffith.criterion)",
+        )
+    return (
+        {"graded_criterion": "eq42"},
+        "graded criterion kappa(k) (Eq. 42) is not calibrated for k != 0: on the circle the pull-off "
+        "force stays 43 % below (k = -0.75) to 7 % above (k = 0.5) Eq. 39 under refinement "
+        "(benchmarks/study_griffith_graded.py)",
+    )
 
 
-def assemble_result(*, problem: Problem, scene: Scene, settings: GriffithSettings, counters: WorkCounters,
-                    pressed_approach: float, stiffness: float, recorder: PullRecorder, outcome: PullOutcome,
-                    timings: dict[str, float]) -> Result:
+def assemble_result(
+    *,
+    problem: Problem,
+    scene: Scene,
+    settings: GriffithSettings,
+    counters: WorkCounters,
+    pressed_approach: float,
+    stiffness: float,
+    recorder: PullRecorder,
+    outcome: PullOutcome,
+    timings: dict[str, float],
+) -> Result:
     """The Result of a finished pull: the pull-off force is the largest tension on the
     recorded curve (0 if the curve never goes tensile)."""
     curve = recorder.curve()
@@ -83,17 +97,29 @@ def assemble_result(*, problem: Problem, scene: Scene, settings: GriffithSetting
         messages.append(graded_message)
     converged = counters.unconverged_solves == 0 and counters.unsettled_cascades == 0 and not outcome.aborted
     if counters.unconverged_solves:
-        messages.append(f"{counters.unconverged_solves} contact solves did not reach rtol = {settings.rtol:g} "
-                        f"(worst relative residual {counters.worst_residual:.3g})")
-    log.info("bem_griffith: %d solves, %d CG iterations, %d matvecs, pull-off %.6g at d = %.6g",
-             counters.contact_solves, counters.cg_iterations, counters.operator_applications, pulloff,
-             curve.approach[peak])
+        messages.append(
+            f"{counters.unconverged_solves} contact solves did not reach rtol = {settings.rtol:g} "
+            f"(worst relative residual {counters.worst_residual:.3g})"
+        )
+    log.info(
+        "bem_griffith: %d solves, %d CG iterations, %d matvecs, pull-off %.6g at d = %.6g",
+        counters.contact_solves,
+        counters.cg_iterations,
+        counters.operator_applications,
+        pulloff,
+        curve.approach[peak],
+    )
     face_elements = problem.face_elements
     info: GriffithInfo = {
-        "matvecs": counters.operator_applications, "solves": counters.contact_solves, "events": outcome.events,
-        "grid": list(problem.face.shape), "face_elements": face_elements,
-        "critical_stress": problem.critical_stress, "press_approach": pressed_approach,
-        "cascades_cut": counters.cascades_cut, "windowed_solves": counters.windowed_solves,
+        "matvecs": counters.operator_applications,
+        "solves": counters.contact_solves,
+        "events": outcome.events,
+        "grid": list(problem.face.shape),
+        "face_elements": face_elements,
+        "critical_stress": problem.critical_stress,
+        "press_approach": pressed_approach,
+        "cascades_cut": counters.cascades_cut,
+        "windowed_solves": counters.windowed_solves,
         "criterion": settings.criterion,
         **graded_info,
     }
@@ -117,6 +143,11 @@ def assemble_result(*, problem: Problem, scene: Scene, settings: GriffithSetting
         stats=counters.stats(events=outcome.events, face_elements=face_elements),
         face_area=face_elements * problem.spacing**2,
         discretisation="grid",
-        error_bars=error_bars(scene, spacing=problem.spacing, face_area=face_elements * problem.spacing**2,
-                              graded_criterion=settings.graded_criterion, criterion=settings.criterion),
+        error_bars=error_bars(
+            scene,
+            spacing=problem.spacing,
+            face_area=face_elements * problem.spacing**2,
+            graded_criterion=settings.graded_criterion,
+            criterion=settings.criterion,
+        ),
     )

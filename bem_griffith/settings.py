@@ -1,4 +1,5 @@
 """Discretisation and solver settings of the Griffith BEM (kept apart from the scene's physics)."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -88,15 +89,24 @@ class GriffithSettings:
             object.__setattr__(self, "step", check_real("settings.step", self.step, lo=0, lo_open=True))
         object.__setattr__(self, "rtol", check_real("settings.rtol", self.rtol, lo=0, hi=1e-2, lo_open=True))
         object.__setattr__(self, "maxiter", check_int("settings.maxiter", self.maxiter, lo=1))
-        object.__setattr__(self, "tie_tolerance", check_real("settings.tie_tolerance", self.tie_tolerance, lo=0, hi=1e-2))
-        object.__setattr__(self, "certainty_margin", check_real("settings.certainty_margin", self.certainty_margin, lo=0, lo_open=True))
+        object.__setattr__(
+            self, "tie_tolerance", check_real("settings.tie_tolerance", self.tie_tolerance, lo=0, hi=1e-2)
+        )
+        object.__setattr__(
+            self, "certainty_margin", check_real("settings.certainty_margin", self.certainty_margin, lo=0, lo_open=True)
+        )
         object.__setattr__(self, "workers", check_int("settings.workers", self.workers, lo=1, hi=256))
-        object.__setattr__(self, "max_memory_gb", check_real("settings.max_memory_gb", self.max_memory_gb, lo=0, lo_open=True))
+        object.__setattr__(
+            self, "max_memory_gb", check_real("settings.max_memory_gb", self.max_memory_gb, lo=0, lo_open=True)
+        )
         if not isinstance(self.shrink_window, bool):
             raise SceneError("settings.shrink_window", f"must be True or False (got {self.shrink_window!r})")
         check_choice("settings.preconditioner", self.preconditioner, {"none", "fourier"})
         check_choice("settings.graded_criterion", self.graded_criterion, set(CRITERIA))
         check_choice("settings.criterion", self.criterion, {"paper", "stress_intensity"})
         if self.criterion == "stress_intensity" and self.grid.periodic:
-            raise SceneError("settings.criterion", "'stress_intensity' does not support a periodic grid (its front "
-                             "windows do not wrap); use criterion = 'paper' or periodic = false")
+            raise SceneError(
+                "settings.criterion",
+                "'stress_intensity' does not support a periodic grid (its front "
+                "windows do not wrap); use criterion = 'paper' or periodic = false",
+            )

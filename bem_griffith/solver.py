@@ -13,6 +13,7 @@ solve uses them:
   rules of detachment and re-attachment;
 * ``recording`` and ``result``: the curve, snapshots and the assembled ``Result``.
 """
+
 from __future__ import annotations
 
 import time
@@ -28,8 +29,15 @@ from .recording import PullRecorder
 from .result import assemble_result
 from .settings import GriffithSettings
 
-__all__ = ["solve", "solve_with_resolution", "press", "PressResult", "Problem", "build_problem",
-           "max_elements_per_radius"]
+__all__ = [
+    "solve",
+    "solve_with_resolution",
+    "press",
+    "PressResult",
+    "Problem",
+    "build_problem",
+    "max_elements_per_radius",
+]
 
 
 def solve(scene: Scene, settings: GriffithSettings | None = None, *, callback=None) -> Result:
@@ -48,10 +56,17 @@ def solve(scene: Scene, settings: GriffithSettings | None = None, *, callback=No
     recorder.point(pressed_approach, pressed)
     outcome = pull(problem, scene, settings, counters, pressed_approach, pressed, recorder)
     t3 = time.perf_counter()
-    return assemble_result(problem=problem, scene=scene, settings=settings, counters=counters,
-                           pressed_approach=pressed_approach, stiffness=pressed.stiffness(problem.cell_area),
-                           recorder=recorder, outcome=outcome,
-                           timings={"setup": t1 - t0, "press": t2 - t1, "pull": t3 - t2})
+    return assemble_result(
+        problem=problem,
+        scene=scene,
+        settings=settings,
+        counters=counters,
+        pressed_approach=pressed_approach,
+        stiffness=pressed.stiffness(problem.cell_area),
+        recorder=recorder,
+        outcome=outcome,
+        timings={"setup": t1 - t0, "press": t2 - t1, "pull": t3 - t2},
+    )
 
 
 def press(scene: Scene, settings: GriffithSettings | None = None) -> PressResult:
@@ -63,8 +78,15 @@ def press(scene: Scene, settings: GriffithSettings | None = None) -> PressResult
     cell = problem.cell_area
     if not state.converged:
         raise RuntimeError(f"press: contact solve did not converge (residual {state.residual:.3g})")
-    return PressResult(approach, state.force(approach, cell), state.contact, float(state.contact.sum()) * cell,
-                       state.stiffness(cell), problem.spacing, problem.origin)
+    return PressResult(
+        approach,
+        state.force(approach, cell),
+        state.contact,
+        float(state.contact.sum()) * cell,
+        state.stiffness(cell),
+        problem.spacing,
+        problem.origin,
+    )
 
 
 def solve_with_resolution(scene: Scene, resolution: float | None, *, callback=None) -> Result:

@@ -37,6 +37,7 @@ and K with |d|: the approach at which a front cell reaches K_c is exact, and the
 driver stays exact.  Curved profiles (K not linear in d) and graded bodies (whose G-K
 relation has the graded modulus and the exponent's edge singularity) are refused.
 """
+
 from __future__ import annotations
 
 import math
@@ -48,8 +49,16 @@ from scipy import ndimage
 
 from contact_scene import Homogeneous, Scene, SceneError
 
-__all__ = ["DetachmentRule", "PaperRule", "StressIntensityRule", "FrontFit", "fit_front",
-           "window_depths", "detachment_rule", "check_supported"]
+__all__ = [
+    "DetachmentRule",
+    "PaperRule",
+    "StressIntensityRule",
+    "FrontFit",
+    "fit_front",
+    "window_depths",
+    "detachment_rule",
+    "check_supported",
+]
 
 
 class DetachmentRule(Protocol):
@@ -108,8 +117,8 @@ class FrontFit:
     front_offset: np.ndarray
 
 
-_EXPONENTS = [(a, b) for total in range(5) for a in range(total, -1, -1) for b in [total - a]]   # x^a y^b, degree <= 4
-_QUADRATIC = _EXPONENTS[:6]                                                                # 1, x, y, x^2, xy, y^2
+_EXPONENTS = [(a, b) for total in range(5) for a in range(total, -1, -1) for b in [total - a]]  # x^a y^b, degree <= 4
+_QUADRATIC = _EXPONENTS[:6]  # 1, x, y, x^2, xy, y^2
 
 
 class _Kernels:
@@ -122,7 +131,7 @@ class _Kernels:
     def __init__(self, radius: float):
         r = int(math.floor(radius))
         self.reach = r
-        i, j = np.mgrid[-r:r + 1, -r:r + 1]
+        i, j = np.mgrid[-r : r + 1, -r : r + 1]
         inside = i * i + j * j <= radius * radius
         self.di, self.dj = i[inside], j[inside]
         self.monomials = np.stack([(self.di / radius) ** a * (self.dj / radius) ** b for a, b in _EXPONENTS], -1)
@@ -139,14 +148,20 @@ class _Kernels:
         centres = (rows + r) * stride + (cols + r)
         out = [np.empty((len(rows), m)) for m in exponent_counts]
         for first in range(0, len(rows), self.CHUNK):
-            idx = centres[first:first + self.CHUNK, None] + offsets[None, :]
+            idx = centres[first : first + self.CHUNK, None] + offsets[None, :]
             for n, (image, m) in enumerate(zip(padded, exponent_counts, strict=True)):
-                out[n][first:first + self.CHUNK] = image[idx] @ self.monomials[:, :m]
+                out[n][first : first + self.CHUNK] = image[idx] @ self.monomials[:, :m]
         return out
 
 
-def fit_front(contact: np.ndarray, pressure_per_approach: np.ndarray, spacing: float,
-              depths: tuple[float, float, float], kernels: _Kernels | None = None, min_cells: int = 24) -> FrontFit:
+def fit_front(
+    contact: np.ndarray,
+    pressure_per_approach: np.ndarray,
+    spacing: float,
+    depths: tuple[float, float, float],
+    kernels: _Kernels | None = None,
+    min_cells: int = 24,
+) -> FrontFit:
     """Fit q = x1^-2 by a quadratic in the position (x, y) over each front cell's window
     (module doc), project the cell centre onto the fit's zero level (the fitted front) and
     return K / |d| = sqrt(2 pi / |grad q|) there where the fit is usable: enough window
@@ -202,7 +217,7 @@ def fit_front(contact: np.ndarray, pressure_per_approach: np.ndarray, spacing: f
         x, y = x - value * gx / g2, y - value * gy / g2
     value, gx, gy = value_and_gradient(x, y)
     gradient = np.hypot(gx, gy)
-    offset = np.hypot(x, y) * radius                                       # cells from the front cell's centre
+    offset = np.hypot(x, y) * radius  # cells from the front cell's centre
     usable &= np.isfinite(offset) & (offset <= 0.5 * inner) & (gradient > 0)
     usable &= np.abs(value) <= 1e-8 * np.maximum(np.abs(c0), 1.0) + 1e-10
     # |grad q| in physical units: q_scale * gradient per (R cells)
@@ -216,8 +231,15 @@ class StressIntensityRule:
     fit of the last contact solution it saw (the driver asks for the next event and then
     cascades on the same solution)."""
 
-    def __init__(self, *, critical_stress: float, effective_modulus: float, work_of_adhesion: float,
-                 spacing: float, depths: tuple[float, float, float]):
+    def __init__(
+        self,
+        *,
+        critical_stress: float,
+        effective_modulus: float,
+        work_of_adhesion: float,
+        spacing: float,
+        depths: tuple[float, float, float],
+    ):
         self.paper = PaperRule(critical_stress)
         self.critical_intensity = math.sqrt(2.0 * effective_modulus * work_of_adhesion)
         self.spacing = spacing
@@ -229,8 +251,7 @@ class StressIntensityRule:
     def front(self, solution) -> FrontFit:
         if self._last is None or self._last[0] is not solution:
             self.fits += 1
-            fit = fit_front(solution.contact, solution.pressure_per_approach, self.spacing, self.depths,
-                            self._kernels)
+            fit = fit_front(solution.contact, solution.pressure_per_approach, self.spacing, self.depths, self._kernels)
             self._last = (solution, fit)
         return self._last[1]
 
@@ -259,17 +280,23 @@ class StressIntensityRule:
 def check_supported(scene: Scene, periodic: bool) -> None:
     """Refuse what the stress-intensity criterion cannot do, naming the setting."""
     if not isinstance(scene.material, Homogeneous):
-        raise SceneError("settings.criterion",
-                         "'stress_intensity' needs a homogeneous body: a graded one needs the graded G-K relation "
-                         "and its (k - 1)/2 edge singularity, not K^2 / (2 E*); use criterion = 'paper'")
+        raise SceneError(
+            "settings.criterion",
+            "'stress_intensity' needs a homogeneous body: a graded one needs the graded G-K relation "
+            "and its (k - 1)/2 edge singularity, not K^2 / (2 E*); use criterion = 'paper'",
+        )
     if not scene.indenter.profile.is_flat:
-        raise SceneError("settings.criterion",
-                         "'stress_intensity' supports flat punches only (on a curved profile K is not linear in the "
-                         "approach, so each front cell would need its own root-find); use criterion = 'paper'")
+        raise SceneError(
+            "settings.criterion",
+            "'stress_intensity' supports flat punches only (on a curved profile K is not linear in the "
+            "approach, so each front cell would need its own root-find); use criterion = 'paper'",
+        )
     if periodic:
-        raise SceneError("settings.criterion",
-                         "'stress_intensity' does not support a periodic grid (its front windows do not wrap); "
-                         "use criterion = 'paper'")
+        raise SceneError(
+            "settings.criterion",
+            "'stress_intensity' does not support a periodic grid (its front windows do not wrap); "
+            "use criterion = 'paper'",
+        )
 
 
 def detachment_rule(problem, scene: Scene, settings) -> DetachmentRule:
@@ -278,6 +305,10 @@ def detachment_rule(problem, scene: Scene, settings) -> DetachmentRule:
         return PaperRule(problem.critical_stress)
     check_supported(scene, settings.grid.periodic)
     elements_per_radius = math.sqrt(problem.face_elements / math.pi)
-    return StressIntensityRule(critical_stress=problem.critical_stress, effective_modulus=problem.effective_modulus,
-                               work_of_adhesion=problem.work_of_adhesion, spacing=problem.spacing,
-                               depths=window_depths(elements_per_radius))
+    return StressIntensityRule(
+        critical_stress=problem.critical_stress,
+        effective_modulus=problem.effective_modulus,
+        work_of_adhesion=problem.work_of_adhesion,
+        spacing=problem.spacing,
+        depths=window_depths(elements_per_radius),
+    )

@@ -1,5 +1,6 @@
 """Sub-grid windows: a contact set that has shrunk into a small box of the face is solved
 on that box's (smaller) padded grid, with the same coefficients C_SS."""
+
 from __future__ import annotations
 
 import math
@@ -17,8 +18,16 @@ from .preconditioner import inverse_lattice_symbol
 if TYPE_CHECKING:
     from .problem import Problem
 
-__all__ = ["ContactWindow", "WindowMemo", "window_for", "window_length", "windows_memory_bytes",
-           "WINDOW_STEPS", "WINDOW_GAIN", "WINDOW_MEMO"]
+__all__ = [
+    "ContactWindow",
+    "WindowMemo",
+    "window_for",
+    "window_length",
+    "windows_memory_bytes",
+    "WINDOW_STEPS",
+    "WINDOW_GAIN",
+    "WINDOW_MEMO",
+]
 
 #: window extents are rounded up to multiples of n / WINDOW_STEPS, so that a shrinking
 #: contact set reuses a few windows (each costs a kernel transform and a preconditioner symbol)
@@ -93,8 +102,11 @@ def window_for(problem: Problem, contact: np.ndarray) -> ContactWindow | None:
 
     def build():
         operator = problem.operator.window((wx, wy))
-        inverse = (inverse_lattice_symbol(operator.padded_shape, problem.spacing, problem.point_kernel)
-                   if problem.inverse_symbol is not None and problem.point_kernel is not None else None)
+        inverse = (
+            inverse_lattice_symbol(operator.padded_shape, problem.spacing, problem.point_kernel)
+            if problem.inverse_symbol is not None and problem.point_kernel is not None
+            else None
+        )
         return operator, inverse
 
     operator, inverse = problem.windows.get((wx, wy), build)

@@ -1,4 +1,5 @@
 """Small helpers shared by the benchmark scripts: thread settings and median timing."""
+
 from __future__ import annotations
 
 import os
@@ -41,10 +42,19 @@ def provenance() -> str:
     import scipy
 
     try:
-        commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
-                                cwd=os.path.dirname(os.path.abspath(__file__)), check=True).stdout.strip()
-        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], capture_output=True,
-                               text=True, cwd=os.path.dirname(os.path.abspath(__file__))).stdout.strip()
+        commit = subprocess.run(
+            ["git", "rev-parse", "--short", "HEAD"],
+            capture_output=True,
+            text=True,
+            cwd=os.path.dirname(os.path.abspath(__file__)),
+            check=True,
+        ).stdout.strip()
+        dirty = subprocess.run(
+            ["git", "status", "--porcelain", "--untracked-files=no"],
+            capture_output=True,
+            text=True,
+            cwd=os.path.dirname(os.path.abspath(__file__)),
+        ).stdout.strip()
         commit += " (with uncommitted changes)" if dirty else ""
     except (OSError, subprocess.CalledProcessError):
         commit = "unknown"
@@ -54,8 +64,10 @@ def provenance() -> str:
             cpu = next((line.split(":", 1)[1].strip() for line in f if line.startswith("model name")), cpu)
     except OSError:
         pass
-    return (f"Generated {datetime.datetime.now(datetime.UTC):%Y-%m-%d %H:%M} UTC on {cpu}, "
-            f"{os.cpu_count()} cores, Python {platform.python_version()}, numpy {numpy.__version__}, "
-            f"scipy {scipy.__version__}, commit {commit}; thread counts: OPENBLAS/OMP/MKL "
-            f"{os.environ.get('OPENBLAS_NUM_THREADS')}/{os.environ.get('OMP_NUM_THREADS')}/"
-            f"{os.environ.get('MKL_NUM_THREADS')}.")
+    return (
+        f"Generated {datetime.datetime.now(datetime.UTC):%Y-%m-%d %H:%M} UTC on {cpu}, "
+        f"{os.cpu_count()} cores, Python {platform.python_version()}, numpy {numpy.__version__}, "
+        f"scipy {scipy.__version__}, commit {commit}; thread counts: OPENBLAS/OMP/MKL "
+        f"{os.environ.get('OPENBLAS_NUM_THREADS')}/{os.environ.get('OMP_NUM_THREADS')}/"
+        f"{os.environ.get('MKL_NUM_THREADS')}."
+    )

@@ -10,6 +10,7 @@
 
     python benchmarks/bench_energy.py [--skip-large]
 """
+
 from __future__ import annotations
 
 import math
@@ -46,16 +47,27 @@ def minimisers():
         dt = time.perf_counter() - t
         pair = fft_pair(tuple(r.info["padded_grid"]))
         ref = ref or r.pulloff_force
-        rows.append((name, f"{dt:.2f}", f"{dt / pair:.0f}", r.iterations, r.info["evaluations"],
-                     r.info["minimisations"], f"{r.pulloff_force:.8f}", f"{r.pulloff_force / ref - 1:+.1e}"))
+        rows.append(
+            (
+                name,
+                f"{dt:.2f}",
+                f"{dt / pair:.0f}",
+                r.iterations,
+                r.info["evaluations"],
+                r.info["minimisations"],
+                f"{r.pulloff_force:.8f}",
+                f"{r.pulloff_force / ref - 1:+.1e}",
+            )
+        )
     print(f"1. circle pull-off, l_c = 0.16 a, 32 per radius (padded {r.info['padded_grid']})")
-    print(table(rows, ("minimiser", "wall s", "FFT pairs", "iterations", "evaluations", "minimisations", "F_A",
-                       "vs pk")))
+    print(
+        table(rows, ("minimiser", "wall s", "FFT pairs", "iterations", "evaluations", "minimisations", "F_A", "vs pk"))
+    )
 
 
 def overhead():
     W = 0.02
-    N = 63.0   # a 128 x 128 face raster
+    N = 63.0  # a 128 x 128 face raster
     sc = circle(W, math.sqrt(0.16 * W))
     h = 1.0 / N
     prob = be.build_problem(sc, h, be.Potential(W, math.sqrt(0.16 * W)))
@@ -66,8 +78,9 @@ def overhead():
         t_step = median_time(lambda: be.minimise(prob, m.U, -0.105, True, method=name), repeat=3)
         t_over = median_time(lambda: be.minimise(prob, m.U, -0.1, True, method=name), repeat=7)
         t_setup = median_time(lambda: be.build_problem(sc, h, be.Potential(W, math.sqrt(0.16 * W))), repeat=5)
-        rows.append((name, f"{t_over * 1e3:.1f}", f"{t_step * 1e3:.1f}", f"{t_over / t_step:.1%}",
-                     f"{t_setup * 1e3:.1f}"))
+        rows.append(
+            (name, f"{t_over * 1e3:.1f}", f"{t_step * 1e3:.1f}", f"{t_over / t_step:.1%}", f"{t_setup * 1e3:.1f}")
+        )
     print(f"\n2. per-solve overhead, face grid {prob.n}, padded {prob.padded}")
     print(table(rows, ("minimiser", "at minimum ms", "one step ms", "overhead share", "problem set-up ms")))
 
@@ -76,14 +89,16 @@ def large():
     a, rho = 1.0, 0.05
     N = 127.0
     lc = 2.0 / N
-    W = rho**2 / lc          # E* = 1
+    W = rho**2 / lc  # E* = 1
     sc = circle(W, rho)
     t = time.perf_counter()
     r = be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=N)))
     dt = time.perf_counter() - t
     FK = T.kendall_adhesion_force(E_star=1.0, radius=a, work=W)
-    print(f"\n3. circle {r.info['grid']} (padded {r.info['padded_grid']}), rho = 0.05 a, l_c/a = {lc:.4f}: "
-          f"{dt:.1f} s wall, {r.iterations} iterations, F_A/F_K = {r.pulloff_force / FK:.4f}, converged {r.converged}")
+    print(
+        f"\n3. circle {r.info['grid']} (padded {r.info['padded_grid']}), rho = 0.05 a, l_c/a = {lc:.4f}: "
+        f"{dt:.1f} s wall, {r.iterations} iterations, F_A/F_K = {r.pulloff_force / FK:.4f}, converged {r.converged}"
+    )
 
 
 def zero_range():
@@ -92,9 +107,11 @@ def zero_range():
     r = be.solve(circle(W))
     dt = time.perf_counter() - t
     FK = T.kendall_adhesion_force(E_star=1.0, radius=1.0, work=W)
-    print(f"\n4. zero-range circle (default ratios {r.info['zero_range']['process_zone_ratios']}): {dt:.1f} s wall, "
-          f"F_A/F_K - 1 = {r.pulloff_force / FK - 1:+.3%}, estimate {r.accuracy_estimate:.2%}, "
-          f"runs {[round(f / FK, 4) for f in r.info['zero_range']['pulloff_forces']]}")
+    print(
+        f"\n4. zero-range circle (default ratios {r.info['zero_range']['process_zone_ratios']}): {dt:.1f} s wall, "
+        f"F_A/F_K - 1 = {r.pulloff_force / FK - 1:+.3%}, estimate {r.accuracy_estimate:.2%}, "
+        f"runs {[round(f / FK, 4) for f in r.info['zero_range']['pulloff_forces']]}"
+    )
 
 
 if __name__ == "__main__":

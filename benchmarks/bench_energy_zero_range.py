@@ -15,6 +15,7 @@ with the date, the machine and the load average at the start.  No timed tests us
 The baseline default is the last revision before the zero-range speed-ups (same numbers as
 the pull-off before the modules were split, bit for bit).
 """
+
 from __future__ import annotations
 
 import argparse
@@ -40,14 +41,18 @@ from contact_scene import theory as T
 ROOT = Path(__file__).resolve().parent.parent
 BASELINE = "4e10c03"
 W = 0.02
-FACES = {"circle": lambda: cs.Circle(1.0), "square": lambda: cs.Square(2.0),
-         "triangle": lambda: cs.Triangle.equilateral(2.0)}
+FACES = {
+    "circle": lambda: cs.Circle(1.0),
+    "square": lambda: cs.Square(2.0),
+    "triangle": lambda: cs.Triangle.equilateral(2.0),
+}
 
 
 def load_baseline(rev: str, where: Path):
     """``bem_energy`` at git revision ``rev``, importable as ``bem_energy_baseline``."""
-    archive = subprocess.run(["git", "-C", str(ROOT), "archive", rev, "bem_energy"], check=True,
-                             capture_output=True).stdout
+    archive = subprocess.run(
+        ["git", "-C", str(ROOT), "archive", rev, "bem_energy"], check=True, capture_output=True
+    ).stdout
     subprocess.run(["tar", "-x", "-C", str(where)], input=archive, check=True)
     (where / "bem_energy").rename(where / "bem_energy_baseline")
     sys.path.insert(0, str(where))
@@ -61,18 +66,39 @@ def run(package, shape, quick: bool):
     return time.perf_counter() - t, r
 
 
-HEADERS = ("face", "old s", "new s", "old/new", "F_A/F_up old", "F_A/F_up new", "change",
-           "|change|/estimate", "max range change")
+HEADERS = (
+    "face",
+    "old s",
+    "new s",
+    "old/new",
+    "F_A/F_up old",
+    "F_A/F_up new",
+    "change",
+    "|change|/estimate",
+    "max range change",
+)
 
 
 def write(path: Path, args, started, load, rows, records):
-    rev = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True,
-                         text=True).stdout.strip()
-    out = {"written_by": "benchmarks/bench_energy_zero_range.py", "date": started.isoformat(timespec="seconds"),
-           "machine": {"platform": platform.platform(), "processor": platform.processor() or platform.machine(),
-                       "cpus": os.cpu_count(), "load_average_at_start": load},
-           "revision": rev, "baseline": args.baseline, "repeats": args.repeats,
-           "headers": list(HEADERS), "rows": [list(r) for r in rows], "faces": dict(records)}
+    rev = subprocess.run(
+        ["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True
+    ).stdout.strip()
+    out = {
+        "written_by": "benchmarks/bench_energy_zero_range.py",
+        "date": started.isoformat(timespec="seconds"),
+        "machine": {
+            "platform": platform.platform(),
+            "processor": platform.processor() or platform.machine(),
+            "cpus": os.cpu_count(),
+            "load_average_at_start": load,
+        },
+        "revision": rev,
+        "baseline": args.baseline,
+        "repeats": args.repeats,
+        "headers": list(HEADERS),
+        "rows": [list(r) for r in rows],
+        "faces": dict(records),
+    }
     if args.update and path.exists():
         previous = json.loads(path.read_text())
         kept = [r for r in previous.get("rows", []) if r[0] not in records]
@@ -88,8 +114,11 @@ def main(argv=None):
     ap.add_argument("--baseline", default=BASELINE, help="git revision of the previous algorithm")
     ap.add_argument("--json", default=str(ROOT / "docs" / "performance_energy_zero_range.json"))
     ap.add_argument("--quick", action="store_true", help="the harness's coarse sequence instead (a smoke test)")
-    ap.add_argument("--update", action="store_true",
-                    help="keep the other faces already in --json (each face keeps its own date and load)")
+    ap.add_argument(
+        "--update",
+        action="store_true",
+        help="keep the other faces already in --json (each face keeps its own date and load)",
+    )
     args = ap.parse_args(argv)
     faces = [f.strip() for f in args.faces.split(",") if f.strip()]
     started = datetime.now(UTC)
@@ -115,22 +144,45 @@ def main(argv=None):
             f_new = new.info["zero_range"]["pulloff_forces"]
             worst_range = max(abs(b / a - 1) for a, b in zip(f_old, f_new, strict=True))
             change = new.pulloff_force / old.pulloff_force - 1
-            rows.append((name, f"{t_old:.1f}", f"{t_new:.1f}", f"{t_old / t_new:.2f}",
-                         f"{old.pulloff_force / F_up:.5f}", f"{new.pulloff_force / F_up:.5f}", f"{change:+.1e}",
-                         f"{abs(change) / new.accuracy_estimate:.3f}", f"{worst_range:.1e}"))
-            records[name] = {"date": datetime.now(UTC).isoformat(timespec="seconds"),
-                             "load_average_at_start": face_load,
-                             "sequence": "coarse" if args.quick else "default", "old_s": times["old"], "new_s": times["new"], "ratio": t_old / t_new,
-                             "F_old": old.pulloff_force, "F_new": new.pulloff_force, "F_upper": F_up,
-                             "estimate_new": new.accuracy_estimate, "estimate_old": old.accuracy_estimate,
-                             "ranges": new.info["zero_range"]["process_zone_ratios"],
-                             "range_forces_old": f_old, "range_forces_new": f_new,
-                             "largest_range_change": worst_range,
-                             "minimiser_iterations_old": old.iterations, "minimiser_iterations_new": new.iterations}
-            if args.json:      # after every face, so that a long run leaves what it measured
+            rows.append(
+                (
+                    name,
+                    f"{t_old:.1f}",
+                    f"{t_new:.1f}",
+                    f"{t_old / t_new:.2f}",
+                    f"{old.pulloff_force / F_up:.5f}",
+                    f"{new.pulloff_force / F_up:.5f}",
+                    f"{change:+.1e}",
+                    f"{abs(change) / new.accuracy_estimate:.3f}",
+                    f"{worst_range:.1e}",
+                )
+            )
+            records[name] = {
+                "date": datetime.now(UTC).isoformat(timespec="seconds"),
+                "load_average_at_start": face_load,
+                "sequence": "coarse" if args.quick else "default",
+                "old_s": times["old"],
+                "new_s": times["new"],
+                "ratio": t_old / t_new,
+                "F_old": old.pulloff_force,
+                "F_new": new.pulloff_force,
+                "F_upper": F_up,
+                "estimate_new": new.accuracy_estimate,
+                "estimate_old": old.accuracy_estimate,
+                "ranges": new.info["zero_range"]["process_zone_ratios"],
+                "range_forces_old": f_old,
+                "range_forces_new": f_new,
+                "largest_range_change": worst_range,
+                "minimiser_iterations_old": old.iterations,
+                "minimiser_iterations_new": new.iterations,
+            }
+            if args.json:  # after every face, so that a long run leaves what it measured
                 write(Path(args.json), args, started, load, rows, records)
-    print(f"\nzero-range limit, {'coarse' if args.quick else 'default'} sequence, E* = 1, w = {W}; baseline {args.baseline}; "
-          f"load average {load[0]:.1f} at the start")
+    print(
+        f"\nzero-range limit, {'coarse' if args.quick else 'default'} sequence, E* = 1, w = {W}; "
+        f"baseline {args.baseline}; "
+        f"load average {load[0]:.1f} at the start"
+    )
     print(table(rows, HEADERS))
     if args.json:
         print(f"written {args.json}")

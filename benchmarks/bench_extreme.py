@@ -3,6 +3,7 @@
 
     python benchmarks/bench_extreme.py
 """
+
 from __future__ import annotations
 
 import _timing  # noqa: F401

@@ -13,6 +13,7 @@ assembled matrices agree to rounding, so the answers may move only by the precis
 solve and of the finite-difference energy release rate, far inside that bound.  Results go to
 docs/performance_fem.json.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -41,7 +42,7 @@ def run(name: str, repeat: int) -> dict:
     cpu = {v: [] for v in VARIANTS}
     results = {}
     for i in range(repeat):
-        for v in (VARIANTS if i % 2 == 0 else VARIANTS[::-1]):      # alternate who goes first
+        for v in VARIANTS if i % 2 == 0 else VARIANTS[::-1]:  # alternate who goes first
             t, c = time.perf_counter(), time.process_time()
             results[v] = fr.solve(sc, fr.FemSettings(kernels=v))
             wall[v].append(time.perf_counter() - t)
@@ -76,26 +77,67 @@ def main() -> None:
         rows.append(run(name, args.repeat))
         r = rows[-1]
         print(name, f"{r['previous_wall_s']:.1f} s -> {r['new_wall_s']:.1f} s", flush=True)
-    head = ["case", "unknowns", "previous s", "new s", "ratio", "previous CPU s", "new CPU s", "CPU ratio",
-            "dK/K", "dF_A/F_A", "dd_c/d_c", "error bar F_A"]
-    table = [[r["case"], r["unknowns"], f"{r['previous_wall_s']:.1f}", f"{r['new_wall_s']:.1f}",
-              f"{r['previous_wall_s'] / r['new_wall_s']:.1f}", f"{r['previous_cpu_s']:.1f}", f"{r['new_cpu_s']:.1f}",
-              f"{r['previous_cpu_s'] / r['new_cpu_s']:.1f}",
-              *(f"{r['relative_change'][q]:+.1e}" for q in QUANTITIES), f"{r['error_bar']['pulloff_force']:.1e}"]
-             for r in rows]
+    head = [
+        "case",
+        "unknowns",
+        "previous s",
+        "new s",
+        "ratio",
+        "previous CPU s",
+        "new CPU s",
+        "CPU ratio",
+        "dK/K",
+        "dF_A/F_A",
+        "dd_c/d_c",
+        "error bar F_A",
+    ]
+    table = [
+        [
+            r["case"],
+            r["unknowns"],
+            f"{r['previous_wall_s']:.1f}",
+            f"{r['new_wall_s']:.1f}",
+            f"{r['previous_wall_s'] / r['new_wall_s']:.1f}",
+            f"{r['previous_cpu_s']:.1f}",
+            f"{r['new_cpu_s']:.1f}",
+            f"{r['previous_cpu_s'] / r['new_cpu_s']:.1f}",
+            *(f"{r['relative_change'][q]:+.1e}" for q in QUANTITIES),
+            f"{r['error_bar']['pulloff_force']:.1e}",
+        ]
+        for r in rows
+    ]
     print(_timing.table(table, head))
     print(_timing.provenance())
     if not args.no_json:
-        rev = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True,
-                             text=True).stdout.strip()
+        rev = subprocess.run(
+            ["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True
+        ).stdout.strip()
         out = ROOT / "docs" / "performance_fem.json"
-        out.write_text(json.dumps({
-            "written_by": "benchmarks/bench_fem.py", "date": started.isoformat(timespec="seconds"),
-            "machine": {"platform": platform.platform(), "processor": platform.processor() or platform.machine(),
-                        "cpus": os.cpu_count(), "load_average_at_start": load},
-            "revision": rev, "repeats": args.repeat,
-            "variants": {"previous": "FemSettings(kernels='scikit-fem')", "new": "FemSettings(kernels='vectorised')"},
-            "headers": head, "rows": table, "cases": rows}, indent=1) + "\n")
+        out.write_text(
+            json.dumps(
+                {
+                    "written_by": "benchmarks/bench_fem.py",
+                    "date": started.isoformat(timespec="seconds"),
+                    "machine": {
+                        "platform": platform.platform(),
+                        "processor": platform.processor() or platform.machine(),
+                        "cpus": os.cpu_count(),
+                        "load_average_at_start": load,
+                    },
+                    "revision": rev,
+                    "repeats": args.repeat,
+                    "variants": {
+                        "previous": "FemSettings(kernels='scikit-fem')",
+                        "new": "FemSettings(kernels='vectorised')",
+                    },
+                    "headers": head,
+                    "rows": table,
+                    "cases": rows,
+                },
+                indent=1,
+            )
+            + "\n"
+        )
         print(f"wrote {out}")
 
 

@@ -5,6 +5,7 @@ pull-off, as medians and ratios measured in one run.
 
     python benchmarks/bench_graded.py
 """
+
 from __future__ import annotations
 
 import time
@@ -28,15 +29,24 @@ def main(N: int = 48):
         rows.append(("kernel set-up", f"k = {k:+g}", f"{t * 1e3:.1f} ms", f"{t / t_love:.1f}"))
     settings = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N))
     base = None
-    for name, mat in (("homogeneous", cs.Homogeneous(0.75, 0.5)), ("k = +0.5", cs.PowerLawGraded(1.0, 1.0, 0.5)),
-                      ("k = -0.5", cs.PowerLawGraded(1.0, 1.0, -0.5))):
+    for name, mat in (
+        ("homogeneous", cs.Homogeneous(0.75, 0.5)),
+        ("k = +0.5", cs.PowerLawGraded(1.0, 1.0, 0.5)),
+        ("k = -0.5", cs.PowerLawGraded(1.0, 1.0, -0.5)),
+    ):
         sc = cs.Scene(cs.Indenter(cs.Circle(1.0)), mat, cs.Adhesion(1.0))
         t0 = time.perf_counter()
         r = bg.solve(sc, settings)
         wall = time.perf_counter() - t0
         base = base or wall
-        rows.append(("pull-off", name, f"{wall:.2f} s ({r.info['matvecs']} matvecs, {r.info['solves']} solves)",
-                     f"{wall / base:.1f}"))
+        rows.append(
+            (
+                "pull-off",
+                name,
+                f"{wall:.2f} s ({r.info['matvecs']} matvecs, {r.info['solves']} solves)",
+                f"{wall / base:.1f}",
+            )
+        )
     print(f"Circle, {N} elements per radius ({n} x {n} grid, padded {P})")
     print(table(rows, ("what", "material", "time", "vs homogeneous")))
 

@@ -7,6 +7,7 @@ convolution (scipy.fft rfft2 -> multiply -> irfft2) at the same padded size, the
 (the "matvec-equivalents"), and the operator applications actually counted.  A second
 table shows which solver choices change the answer (they must not) and what they cost.
 """
+
 from __future__ import annotations
 
 import sys
@@ -52,30 +53,75 @@ def main(star512=False):
         wall, r = time_solve(sc, st, rep)
         nx, ny = r.info["grid"]
         tb = bare_conv_time(nx, ny)
-        rows.append([name, f"{N:.0f}", f"{nx}x{ny}", f"{wall:.2f}", f"{tb * 1e3:.2f}", f"{wall / tb:.0f}",
-                     r.info["matvecs"], r.info["solves"], r.info["events"], f"{r.pulloff_force:.6g}"])
-        print(_timing.table(rows, ["case", "N/radius", "grid", "wall s", "bare conv ms", "matvec-eq", "matvecs",
-                                   "solves", "events", "F_A"]), flush=True)
+        rows.append(
+            [
+                name,
+                f"{N:.0f}",
+                f"{nx}x{ny}",
+                f"{wall:.2f}",
+                f"{tb * 1e3:.2f}",
+                f"{wall / tb:.0f}",
+                r.info["matvecs"],
+                r.info["solves"],
+                r.info["events"],
+                f"{r.pulloff_force:.6g}",
+            ]
+        )
+        print(
+            _timing.table(
+                rows,
+                [
+                    "case",
+                    "N/radius",
+                    "grid",
+                    "wall s",
+                    "bare conv ms",
+                    "matvec-eq",
+                    "matvecs",
+                    "solves",
+                    "events",
+                    "F_A",
+                ],
+            ),
+            flush=True,
+        )
     print()
     # which choices change the answer: a circle, and a star, whose tips detach first so that
     # its later solves fit into smaller windows
-    for name, sc, N in [("circle", circle, 48), ("star 128^2", star, 128 * star.indenter.shape.equivalent_radius / 2.0)]:
+    for name, sc, N in [
+        ("circle", circle, 48),
+        ("star 128^2", star, 128 * star.indenter.shape.equivalent_radius / 2.0),
+    ]:
         rows, ref = [], None
-        for label, kw in [("default (fourier, cut cascade, window)", {}),
-                          ("no preconditioner", {"preconditioner": "none"}),
-                          ("full cascade", {"stop_when_certainly_detached": False}),
-                          ("whole-grid FFTs", {"shrink_window": False}),
-                          ("rtol 1e-8", {"rtol": 1e-8})]:
+        for label, kw in [
+            ("default (fourier, cut cascade, window)", {}),
+            ("no preconditioner", {"preconditioner": "none"}),
+            ("full cascade", {"stop_when_certainly_detached": False}),
+            ("whole-grid FFTs", {"shrink_window": False}),
+            ("rtol 1e-8", {"rtol": 1e-8}),
+        ]:
             wall, r = time_solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N), **kw), 3)
             if ref is None:
                 ref, ref_wall = r, wall
             same = np.array_equal(r.curve.contact_area, ref.curve.contact_area)
-            rows.append([label, f"{wall:.2f}", f"{wall / ref_wall:.2f}", r.info["matvecs"],
-                         f"{r.pulloff_force:.10g}", f"{abs(r.pulloff_force / ref.pulloff_force - 1):.1e}",
-                         f"{abs(r.detachment_approach / ref.detachment_approach - 1):.1e}", "yes" if same else "no"])
+            rows.append(
+                [
+                    label,
+                    f"{wall:.2f}",
+                    f"{wall / ref_wall:.2f}",
+                    r.info["matvecs"],
+                    f"{r.pulloff_force:.10g}",
+                    f"{abs(r.pulloff_force / ref.pulloff_force - 1):.1e}",
+                    f"{abs(r.detachment_approach / ref.detachment_approach - 1):.1e}",
+                    "yes" if same else "no",
+                ]
+            )
         print(f"{name}, N = {N:.0f} per radius:")
-        print(_timing.table(rows, ["choice", "wall s", "/ default", "matvecs", "F_A", "|dF_A|/F_A", "|d det| rel",
-                                   "same areas"]))
+        print(
+            _timing.table(
+                rows, ["choice", "wall s", "/ default", "matvecs", "F_A", "|dF_A|/F_A", "|d det| rel", "same areas"]
+            )
+        )
         print()
 
 

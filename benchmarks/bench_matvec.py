@@ -6,6 +6,7 @@ Prints medians and ratios measured in one run: ours (pruned transforms) / bare
 (scipy.fft rfft2 -> multiply -> irfft2 on the padded grid), for float64 and for the float32
 preconditioner path, and pyfftw's bare convolution when pyfftw is installed.
 """
+
 from __future__ import annotations
 
 import _timing  # noqa: F401  (sets thread counts before numpy loads)
@@ -36,6 +37,7 @@ def main(sizes=(64, 130, 258, 514)):
 
         p32 = p.astype(np.float32)
         s32 = op.symbol.astype(np.float32)
+
         def ours32():
             return op.convolve(p32, s32)
 
@@ -46,6 +48,7 @@ def main(sizes=(64, 130, 258, 514)):
         row = [f"{n}x{n}", f"{P[0]}x{P[1]}", f"{tb * 1e3:.3f}", f"{to * 1e3:.3f}", f"{to / tb:.2f}", f"{t32 / tb:.2f}"]
         try:
             import pyfftw.interfaces.scipy_fft as pf
+
             tf = _timing.median_time(lambda: pf.irfft2(pf.rfft2(buf, workers=workers) * khat, s=P, workers=workers))
             row.append(f"{tf / tb:.2f}")
         except ImportError:

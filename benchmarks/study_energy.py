@@ -9,6 +9,7 @@
 
     python benchmarks/study_energy.py [--quick]
 """
+
 from __future__ import annotations
 
 import math
@@ -39,8 +40,17 @@ def fixed_range(Ns):
         res.append((N, r, time.perf_counter() - t))
     Fref = res[-1][1].pulloff_force
     for N, r, dt in res:
-        rows.append((N, f"{r.pulloff_force:.6f}", f"{r.pulloff_force / Fref - 1:+.2e}",
-                     f"{(r.pulloff_force / Fref - 1) * N:+.3f}", r.info["peak"], r.iterations, f"{dt:.1f}"))
+        rows.append(
+            (
+                N,
+                f"{r.pulloff_force:.6f}",
+                f"{r.pulloff_force / Fref - 1:+.2e}",
+                f"{(r.pulloff_force / Fref - 1) * N:+.3f}",
+                r.info["peak"],
+                r.iterations,
+                f"{dt:.1f}",
+            )
+        )
     print("Fixed range l_c = 0.16 a: F_A against N (error against the finest run)")
     print(table(rows, ("N/radius", "F_A", "rel. err", "err x N", "peak", "iterations", "wall s")))
 
@@ -52,8 +62,12 @@ def zero_range(ratios, epz=2.0):
         lc = r * A
         h = min(lc / epz, A / 16)
         t = time.perf_counter()
-        res = be.pull_off(circle(), be.EnergySettings(grid=cs.Grid(spacing=h)), spacing=h,
-                          potential=be.Potential(W, math.sqrt(lc * W / E)))
+        res = be.pull_off(
+            circle(),
+            be.EnergySettings(grid=cs.Grid(spacing=h)),
+            spacing=h,
+            potential=be.Potential(W, math.sqrt(lc * W / E)),
+        )
         dt = time.perf_counter() - t
         f = res.pulloff_force / FK
         data.append((r, res.pulloff_force))
@@ -69,8 +83,14 @@ def zero_range(ratios, epz=2.0):
         for j in range(k + 2, len(lc) + 1):
             F0, _, est = be.richardson(lc[k:j], F[k:j], rate=0.5)
             free = be.richardson(lc[k:j], F[k:j])[1] if j - k >= 3 else None
-            out.append((",".join(f"{x:g}" for x in lc[k:j]), f"{F0 / FK - 1:+.3%}", f"{est / F0:.2%}",
-                        "-" if free is None else f"{free:.2f}"))
+            out.append(
+                (
+                    ",".join(f"{x:g}" for x in lc[k:j]),
+                    f"{F0 / FK - 1:+.3%}",
+                    f"{est / F0:.2%}",
+                    "-" if free is None else f"{free:.2f}",
+                )
+            )
     print("\nRichardson (rate 1/2, least squares) over consecutive ratios")
     print(table(out, ("ratios", "F0/F_K - 1", "estimate", "free rate")))
 

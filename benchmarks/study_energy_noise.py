@@ -18,6 +18,7 @@ equivalent radius).
     python benchmarks/study_energy_noise.py [--ratio 0.04] [--steps 36,38,40,42,44]
         [--faces circle,square,triangle] [--json PATH]
 """
+
 from __future__ import annotations
 
 import argparse
@@ -32,8 +33,11 @@ import bem_energy as be
 import contact_scene as cs
 
 W = 0.02
-FACES = {"circle": lambda: cs.Circle(1.0), "square": lambda: cs.Square(2.0),
-         "triangle": lambda: cs.Triangle.equilateral(2.0)}
+FACES = {
+    "circle": lambda: cs.Circle(1.0),
+    "square": lambda: cs.Square(2.0),
+    "triangle": lambda: cs.Triangle.equilateral(2.0),
+}
 
 
 def main(argv=None):
@@ -58,13 +62,20 @@ def main(argv=None):
             t = time.perf_counter()
             r = be.pull_off(sc, be.EnergySettings(grid=cs.Grid(spacing=h), steps=n), spacing=h)
             forces.append(r.pulloff_force)
-            print(f"  {name} steps {n}: F_A = {r.pulloff_force:.8f} ({r.info['peak']}, {time.perf_counter() - t:.1f} s)",
-                  flush=True)
+            print(
+                f"  {name} steps {n}: F_A = {r.pulloff_force:.8f} ({r.info['peak']}, {time.perf_counter() - t:.1f} s)",
+                flush=True,
+            )
         mean = sum(forces) / len(forces)
         spread = (max(forces) - min(forces)) / mean
         rows.append((name, f"{args.ratio:g}", round(a / h), *[f"{f:.6f}" for f in forces], f"{spread:.1e}"))
-        out[name] = {"ratio": args.ratio, "elements_per_radius": a / h, "steps": steps, "forces": forces,
-                     "spread": spread}
+        out[name] = {
+            "ratio": args.ratio,
+            "elements_per_radius": a / h,
+            "steps": steps,
+            "forces": forces,
+            "spread": spread,
+        }
     print(table(rows, ("face", "l_c/a", "per radius", *[f"steps {n}" for n in steps], "spread")))
     if args.json:
         with open(args.json, "w") as fh:

@@ -9,6 +9,7 @@ default grid's count) per potential.
 
     python benchmarks/study_energy_process_zone.py [--quick]
 """
+
 from __future__ import annotations
 
 import math
@@ -39,8 +40,9 @@ def sweep(kind, ratio, per_lc):
         Fn = T.force_at_nominal_area(r.pulloff_force, area=area, nominal_area=sc.indenter.shape.area, k=0.0)
         res.append((n, A / h, r.pulloff_force / FK, Fn / FK, dt))
     ref = res[-1][3]
-    rows = [(f"{n:g}", f"{N:.1f}", f"{f:.5f}", f"{fn:.5f}", f"{fn / ref - 1:+.2%}", f"{dt:.1f}")
-            for n, N, f, fn, dt in res]
+    rows = [
+        (f"{n:g}", f"{N:.1f}", f"{f:.5f}", f"{fn:.5f}", f"{fn / ref - 1:+.2%}", f"{dt:.1f}") for n, N, f, fn, dt in res
+    ]
     print(f"\n{kind}, l_c = {ratio:g} a: F_A / F_Kendall against elements per l_c (change against the finest)")
     print(table(rows, ("per l_c", "N/radius", "F/F_K", "scaled", "vs finest", "wall s")))
 

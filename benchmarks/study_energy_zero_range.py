@@ -17,6 +17,7 @@ face's sequence with full precision (ratios, spacings, areas, raw and area-scale
 command) under the key "<face>-epz<elements per l_c>", merged into the file if it exists: the
 zero-range estimator is validated on these (tests/test_zero_range_estimator.py).
 """
+
 from __future__ import annotations
 
 import argparse
@@ -56,8 +57,9 @@ def finite_ranges(name, ratios, epz=2.0, min_per_radius=24.0, record=None):
         lc = r * a
         h = min(lc / epz, a / min_per_radius)
         t = time.perf_counter()
-        res = be.pull_off(sc, be.EnergySettings(grid=cs.Grid(spacing=h)), spacing=h,
-                          potential=be.Potential(W, math.sqrt(lc * W / E)))
+        res = be.pull_off(
+            sc, be.EnergySettings(grid=cs.Grid(spacing=h)), spacing=h, potential=be.Potential(W, math.sqrt(lc * W / E))
+        )
         dt = time.perf_counter() - t
         area = cs.rasterise(shape, h).area
         f = res.pulloff_force / upper(shape)
@@ -68,38 +70,64 @@ def finite_ranges(name, ratios, epz=2.0, min_per_radius=24.0, record=None):
         areas.append(area)
         conv.append(bool(res.converged and res.detached))
         walls.append(dt)
-        rows.append([r, f"{a / h:.0f}", f"{area / shape.area - 1:+.4f}", f"{f:.4f}", f"{fs:.4f}", res.converged,
-                     f"{dt:.1f}"])
+        rows.append(
+            [r, f"{a / h:.0f}", f"{area / shape.area - 1:+.4f}", f"{f:.4f}", f"{fs:.4f}", res.converged, f"{dt:.1f}"]
+        )
     for i, row in enumerate(rows):
         loc = "-"
         if 1 <= i <= len(rows) - 2:
-            fit = be.richardson(np.array(ratios[i - 1:i + 2]), np.array(scaled[i - 1:i + 2]))
+            fit = be.richardson(np.array(ratios[i - 1 : i + 2]), np.array(scaled[i - 1 : i + 2]))
             loc = "-" if fit[1] is None else f"{fit[1]:.2f}"
         row.append(loc)
     print(f"\n{name}: finite ranges, F_A / F_upper (Eq. 13)", flush=True)
-    print(table(rows, ("l_c/a", "N/radius", "area err", "F/F_up", "area-scaled", "converged", "wall s",
-                       "local rate")), flush=True)
+    print(
+        table(rows, ("l_c/a", "N/radius", "area err", "F/F_up", "area-scaled", "converged", "wall s", "local rate")),
+        flush=True,
+    )
     if record is not None:
-        record.update({
-            "face": name, "shape": repr(shape), "equivalent_radius": a, "nominal_area": shape.area,
-            "youngs_modulus": E, "poisson_ratio": 0.0, "work_of_adhesion": W, "potential": "exponential",
-            "elements_per_process_zone": epz, "minimum_elements_per_radius": min_per_radius,
-            "upper_bound_force": upper(shape),
-            "kendall_force": (T.kendall_adhesion_force(E_star=E, radius=a, work=W)
-                              if isinstance(shape, cs.Circle) else None),
-            "ratios": list(map(float, ratios)), "spacings": spacings, "raster_areas": areas,
-            "raw_pulloff_forces": raw, "area_scaled_pulloff_forces": [float(f) * upper(shape) for f in scaled],
-            "area_scaled_over_upper": list(map(float, scaled)), "converged": conv, "wall_seconds": walls})
+        record.update(
+            {
+                "face": name,
+                "shape": repr(shape),
+                "equivalent_radius": a,
+                "nominal_area": shape.area,
+                "youngs_modulus": E,
+                "poisson_ratio": 0.0,
+                "work_of_adhesion": W,
+                "potential": "exponential",
+                "elements_per_process_zone": epz,
+                "minimum_elements_per_radius": min_per_radius,
+                "upper_bound_force": upper(shape),
+                "kendall_force": (
+                    T.kendall_adhesion_force(E_star=E, radius=a, work=W) if isinstance(shape, cs.Circle) else None
+                ),
+                "ratios": list(map(float, ratios)),
+                "spacings": spacings,
+                "raster_areas": areas,
+                "raw_pulloff_forces": raw,
+                "area_scaled_pulloff_forces": [float(f) * upper(shape) for f in scaled],
+                "area_scaled_over_upper": list(map(float, scaled)),
+                "converged": conv,
+                "wall_seconds": walls,
+            }
+        )
     return np.array(ratios), np.array(scaled)
 
 
 def extrapolations(name, lc, F):
     rows = []
     for j in range(len(lc) - 3):
-        F0, p, est = be.richardson(lc[j:j + 4], F[j:j + 4])
-        F2 = be.richardson(lc[j:j + 4], F[j:j + 4], rate=0.5)[0]
-        rows.append([",".join(f"{x:g}" for x in lc[j:j + 4]), f"{F0:.4f}", "-" if p is None else f"{p:.2f}",
-                     f"{est / F0:.2%}", f"{F2:.4f}"])
+        F0, p, est = be.richardson(lc[j : j + 4], F[j : j + 4])
+        F2 = be.richardson(lc[j : j + 4], F[j : j + 4], rate=0.5)[0]
+        rows.append(
+            [
+                ",".join(f"{x:g}" for x in lc[j : j + 4]),
+                f"{F0:.4f}",
+                "-" if p is None else f"{p:.2f}",
+                f"{est / F0:.2%}",
+                f"{F2:.4f}",
+            ]
+        )
     print(f"{name}: extrapolated F_A / F_upper over windows of four ranges")
     print(table(rows, ("ratios", "fitted rate", "rate", "estimate", "sqrt law")), flush=True)
 
@@ -114,8 +142,12 @@ def griffith(name, Ns, angles):
             s = cs.Transformed(shape, rotation_deg=ang) if ang else shape
             sc = cs.Scene(cs.Indenter(s), cs.Homogeneous(E, 0.0), cs.Adhesion(W))
             r = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)))
-            vals.append(T.force_at_nominal_area(r.pulloff_force, area=cs.rasterise(s, r.grid_spacing).area,
-                                                nominal_area=shape.area) / upper(shape))
+            vals.append(
+                T.force_at_nominal_area(
+                    r.pulloff_force, area=cs.rasterise(s, r.grid_spacing).area, nominal_area=shape.area
+                )
+                / upper(shape)
+            )
         rows.append([N] + [f"{v:.4f}" for v in vals] + [f"{np.mean(vals):.4f}", f"{time.perf_counter() - t:.0f}"])
         print(table(rows, ["N/radius"] + [f"{a:g} deg" for a in angles] + ["mean", "wall s"]), flush=True)
 
@@ -124,16 +156,24 @@ def _git_commit():
     import subprocess
 
     try:
-        return subprocess.run(["git", "rev-parse", "HEAD"], capture_output=True, text=True, check=True,
-                              cwd=os.path.dirname(os.path.abspath(__file__))).stdout.strip()
+        return subprocess.run(
+            ["git", "rev-parse", "HEAD"],
+            capture_output=True,
+            text=True,
+            check=True,
+            cwd=os.path.dirname(os.path.abspath(__file__)),
+        ).stdout.strip()
     except (OSError, subprocess.CalledProcessError):
         return None
 
 
 def store(path, key, record):
     """Merge one sequence into the JSON file (read, update, atomic replace)."""
-    data = {"description": "finite-range pull-off forces of bem_energy at process zones l_c = ratio * a, "
-                           "written by benchmarks/study_energy_zero_range.py --json", "sequences": {}}
+    data = {
+        "description": "finite-range pull-off forces of bem_energy at process zones l_c = ratio * a, "
+        "written by benchmarks/study_energy_zero_range.py --json",
+        "sequences": {},
+    }
     if os.path.exists(path):
         with open(path) as fh:
             data = json.load(fh)

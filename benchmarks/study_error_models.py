@@ -27,6 +27,7 @@ The models are fitted for:
 The margin (``MARGIN``) keeps a face between the sweep's resolutions covered: the errors zig-zag
 with N as the staircase changes, so a resolution not in the sweep can exceed its neighbours.
 """
+
 from __future__ import annotations
 
 import json
@@ -65,13 +66,21 @@ GRIFFITH_FORCE_PLATEAU = 0.0035
 
 def _stiffness_faces():
     E = cs.Homogeneous(1.0, 0.0)
-    side = math.sqrt(math.pi)          # unit equivalent radius
+    side = math.sqrt(math.pi)  # unit equivalent radius
     K_square = math.pi * SQUARE_CAPACITANCE * side
-    graded = [(f"graded_circle_k{k:g}", cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, k), cs.Adhesion(0.0)),
-               T.graded_stiffness(E0=1.0, c0=1.0, k=k, radius=1.0)) for k in GRADED_KS]
-    return graded + [("circle", cs.Scene(cs.Indenter(cs.Circle(1.0)), E, cs.Adhesion(0.0)), 2.0),
-            ("square", cs.Scene(cs.Indenter(cs.Square(side)), E, cs.Adhesion(0.0)), K_square),
-            ("square_30deg", cs.Scene(cs.Indenter(cs.Square(side, rotation_deg=30.0)), E, cs.Adhesion(0.0)), K_square)]
+    graded = [
+        (
+            f"graded_circle_k{k:g}",
+            cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, k), cs.Adhesion(0.0)),
+            T.graded_stiffness(E0=1.0, c0=1.0, k=k, radius=1.0),
+        )
+        for k in GRADED_KS
+    ]
+    return graded + [
+        ("circle", cs.Scene(cs.Indenter(cs.Circle(1.0)), E, cs.Adhesion(0.0)), 2.0),
+        ("square", cs.Scene(cs.Indenter(cs.Square(side)), E, cs.Adhesion(0.0)), K_square),
+        ("square_30deg", cs.Scene(cs.Indenter(cs.Square(side, rotation_deg=30.0)), E, cs.Adhesion(0.0)), K_square),
+    ]
 
 
 def _area_defect(scene, N) -> float:
@@ -106,7 +115,10 @@ def _corner_faces(rows):
         errs = [f / F_inf - 1 for f in F]
         c = max(c, _envelope(CORNER_NS, errs, GRIFFITH_FORCE_PLATEAU))
         out[name] = {"limit": float(F_inf), "errors": dict(zip(map(str, CORNER_NS), errs, strict=True))}
-        rows += [[f"F_A {name} (vs 1/N fit)", N, f"{e:+.5f}", "scaled", f"{N * e:+.3f}"] for N, e in zip(CORNER_NS, errs, strict=True)]
+        rows += [
+            [f"F_A {name} (vs 1/N fit)", N, f"{e:+.5f}", "scaled", f"{N * e:+.3f}"]
+            for N, e in zip(CORNER_NS, errs, strict=True)
+        ]
     return c, out
 
 
@@ -122,13 +134,18 @@ def griffith():
     rows, model = [], {}
     stiff, c_K = {}, 0.0
     for name, sc, K in _stiffness_faces():
-        errs = [bg.press(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N))).stiffness / K - 1
-                for N in STIFFNESS_NS]
+        errs = [
+            bg.press(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N))).stiffness / K - 1
+            for N in STIFFNESS_NS
+        ]
         area = [_area_defect(sc, N) for N in STIFFNESS_NS]
         stiff[name] = errs
         k = getattr(sc.material, "exponent", 0.0)
         c_K = max(c_K, _envelope(STIFFNESS_NS, errs, area=area, exponent=(1 + k) / 2))
-        rows += [[f"K {name}", N, f"{e:+.5f}", f"{a:.5f}", f"{N * e:+.3f}"] for N, e, a in zip(STIFFNESS_NS, errs, area, strict=True)]
+        rows += [
+            [f"K {name}", N, f"{e:+.5f}", f"{a:.5f}", f"{N * e:+.3f}"]
+            for N, e, a in zip(STIFFNESS_NS, errs, area, strict=True)
+        ]
     sc = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.0), cs.Adhesion(1.0))
     FK = T.kendall_adhesion_force(E_star=1.0, radius=1.0, work=1.0)
     dK = T.kendall_critical_approach(E_star=1.0, radius=1.0, work=1.0)
@@ -144,14 +161,24 @@ def griffith():
         rows.append(["d_c circle", N, f"{d_err[-1]:+.5f}", f"{F_area[len(F_err) - 1]:.5f}", f"{N * d_err[-1]:+.3f}"])
     print(_timing.table(rows, ["quantity", "N", "error", "|dA/A|", "N x error"]), flush=True)
     model = {
-        "stiffness": {"c": c_K, "plateau": 0.0, "area_exponent": "(1+k)/2",
-                      "faces": {k: dict(zip(map(str, STIFFNESS_NS), v, strict=True)) for k, v in stiff.items()}},
-        "pulloff_force": {"c": _envelope(FORCE_NS, F_err, GRIFFITH_FORCE_PLATEAU, F_area, 0.75),
-                          "plateau": GRIFFITH_FORCE_PLATEAU, "area_exponent": "(3+k)/4",
-                          "faces": {"circle": dict(zip(map(str, FORCE_NS), F_err, strict=True))}},
-        "pulloff_approach": {"c": _envelope(FORCE_NS, d_err, GRIFFITH_FORCE_PLATEAU, F_area, 0.25),
-                             "plateau": GRIFFITH_FORCE_PLATEAU, "area_exponent": "(1-k)/4",
-                             "faces": {"circle": dict(zip(map(str, FORCE_NS), d_err, strict=True))}},
+        "stiffness": {
+            "c": c_K,
+            "plateau": 0.0,
+            "area_exponent": "(1+k)/2",
+            "faces": {k: dict(zip(map(str, STIFFNESS_NS), v, strict=True)) for k, v in stiff.items()},
+        },
+        "pulloff_force": {
+            "c": _envelope(FORCE_NS, F_err, GRIFFITH_FORCE_PLATEAU, F_area, 0.75),
+            "plateau": GRIFFITH_FORCE_PLATEAU,
+            "area_exponent": "(3+k)/4",
+            "faces": {"circle": dict(zip(map(str, FORCE_NS), F_err, strict=True))},
+        },
+        "pulloff_approach": {
+            "c": _envelope(FORCE_NS, d_err, GRIFFITH_FORCE_PLATEAU, F_area, 0.25),
+            "plateau": GRIFFITH_FORCE_PLATEAU,
+            "area_exponent": "(1-k)/4",
+            "faces": {"circle": dict(zip(map(str, FORCE_NS), d_err, strict=True))},
+        },
     }
     return model
 
@@ -160,7 +187,7 @@ def energy():
     stiff, rows, c_K = {}, [], 0.0
     for name, sc, K in _stiffness_faces():
         if not isinstance(sc.material, cs.Homogeneous):
-            continue              # the energy method is for homogeneous half-spaces
+            continue  # the energy method is for homogeneous half-spaces
         errs = []
         area = [_area_defect(sc, N) for N in STIFFNESS_NS]
         for N in STIFFNESS_NS:
@@ -170,10 +197,19 @@ def energy():
             errs.append(r.stiffness / K - 1)
         stiff[name] = errs
         c_K = max(c_K, _envelope(STIFFNESS_NS, errs, area=area, exponent=0.5))
-        rows += [[f"K {name}", N, f"{e:+.5f}", f"{a:.5f}", f"{N * e:+.3f}"] for N, e, a in zip(STIFFNESS_NS, errs, area, strict=True)]
+        rows += [
+            [f"K {name}", N, f"{e:+.5f}", f"{a:.5f}", f"{N * e:+.3f}"]
+            for N, e, a in zip(STIFFNESS_NS, errs, area, strict=True)
+        ]
     print(_timing.table(rows, ["quantity", "N", "error", "|dA/A|", "N x error"]), flush=True)
-    return {"stiffness": {"c": c_K, "plateau": 0.0, "area_exponent": "(1+k)/2",
-                          "faces": {k: dict(zip(map(str, STIFFNESS_NS), v, strict=True)) for k, v in stiff.items()}}}
+    return {
+        "stiffness": {
+            "c": c_K,
+            "plateau": 0.0,
+            "area_exponent": "(1+k)/2",
+            "faces": {k: dict(zip(map(str, STIFFNESS_NS), v, strict=True)) for k, v in stiff.items()},
+        }
+    }
 
 
 def _exponents():
@@ -200,11 +236,13 @@ def refit(path: Path) -> None:
             area = [_area_defect(sc, N) for N in Ns]
             e = list(errs.values())
             fine = [i for i, N in enumerate(Ns) if N >= FIT_FROM]
-            c = max(c, _envelope([Ns[i] for i in fine], [e[i] for i in fine], m["plateau"],
-                                 [area[i] for i in fine], exps[q]))
+            c = max(
+                c,
+                _envelope([Ns[i] for i in fine], [e[i] for i in fine], m["plateau"], [area[i] for i in fine], exps[q]),
+            )
             coarse = max(coarse, _envelope(Ns, e, m["plateau"], area, exps[q]))
         m["c"], m["coarse_c"] = c, max(c, coarse)
-        if "cornered_faces" in m:   # forces already scaled to the nominal area: no area term
+        if "cornered_faces" in m:  # forces already scaled to the nominal area: no area term
             cc = 0.0
             for v in m["cornered_faces"].values():
                 Ns, e = [int(n) for n in v["errors"]], list(v["errors"].values())
@@ -213,43 +251,69 @@ def refit(path: Path) -> None:
             m["cornered_coarse_c"] = max(cc, m["coarse_c"])
     doc.update(margin=MARGIN, fit_from=FIT_FROM)
     path.write_text(json.dumps(doc, indent=1) + "\n")
-    print(f"fitted {path.relative_to(ROOT)}: " + ", ".join(
-        f"{q}: {m['c']:.3f}/N (coarse {m['coarse_c']:.3f}/N) + {m['plateau']:g}" for q, m in doc["quantities"].items()))
+    print(
+        f"fitted {path.relative_to(ROOT)}: "
+        + ", ".join(
+            f"{q}: {m['c']:.3f}/N (coarse {m['coarse_c']:.3f}/N) + {m['plateau']:g}"
+            for q, m in doc["quantities"].items()
+        )
+    )
 
 
 def write(path: Path, model: dict, what: str) -> None:
-    for m in model.values():       # provisional until refit (the solvers read the file meanwhile)
+    for m in model.values():  # provisional until refit (the solvers read the file meanwhile)
         m.setdefault("coarse_c", m["c"])
-    doc = {"regenerate": "python benchmarks/study_error_models.py", "margin": MARGIN, "fit_from": FIT_FROM,
-           "resolution": "N = elements per equivalent radius sqrt(A/pi); bar = c / N + plateau + area_exponent |A_h/A - 1|",
-           "what": what, "quantities": model}
+    doc = {
+        "regenerate": "python benchmarks/study_error_models.py",
+        "margin": MARGIN,
+        "fit_from": FIT_FROM,
+        "resolution": "N = elements per equivalent radius sqrt(A/pi); "
+        "bar = c / N + plateau + area_exponent |A_h/A - 1|",
+        "what": what,
+        "quantities": model,
+    }
     path.write_text(json.dumps(doc, indent=1) + "\n")
-    print(f"wrote {path.relative_to(ROOT)}: " + ", ".join(f"{q}: {m['c']:.3f}/N + {m['plateau']:g}"
-                                                        for q, m in model.items()))
+    print(
+        f"wrote {path.relative_to(ROOT)}: "
+        + ", ".join(f"{q}: {m['c']:.3f}/N + {m['plateau']:g}" for q, m in model.items())
+    )
 
 
 def write_docs() -> None:
     """docs/error_models.md: the stored models and the errors they cover, as tables."""
-    lines = ["# Error models", "",
-             "Written by `python benchmarks/study_error_models.py` from the models it fits and stores "
-             "(`bem_griffith/error_model.json`, `bem_energy/error_model.json`).  " + _timing.provenance(), "",
-             "A result's bar on a quantity is `c / N + plateau + exponent |A_h / A - 1|`: N elements per "
-             "equivalent radius, A_h the face's area on the grid.  `c` is the largest N x (|error| - the other "
-             f"terms) over the sweep from N = {FIT_FROM} on, times {MARGIN:g}; coarser grids use the same fit over the "
-             "whole sweep (`coarse_c` in the JSON).  The FEM's bars are its own a-posteriori bounds and the "
-             "energy BEM's zero-range force bar is its extrapolation estimate (docs/accuracy.md).", ""]
+    lines = [
+        "# Error models",
+        "",
+        "Written by `python benchmarks/study_error_models.py` from the models it fits and stores "
+        "(`bem_griffith/error_model.json`, `bem_energy/error_model.json`).  " + _timing.provenance(),
+        "",
+        "A result's bar on a quantity is `c / N + plateau + exponent |A_h / A - 1|`: N elements per "
+        "equivalent radius, A_h the face's area on the grid.  `c` is the largest N x (|error| - the other "
+        f"terms) over the sweep from N = {FIT_FROM} on, times {MARGIN:g}; coarser grids use the same fit over the "
+        "whole sweep (`coarse_c` in the JSON).  The FEM's bars are its own a-posteriori bounds and the "
+        "energy BEM's zero-range force bar is its extrapolation estimate (docs/accuracy.md).",
+        "",
+    ]
     for pkg in ("bem_griffith", "bem_energy"):
         path = ROOT / pkg / "error_model.json"
         if not path.exists():
             continue
         doc = json.loads(path.read_text())
-        lines += [f"## {pkg}", "", doc["what"] + ".", "",
-                  "| quantity | c | plateau | area exponent |", "|---|---|---|---|"]
+        lines += [
+            f"## {pkg}",
+            "",
+            doc["what"] + ".",
+            "",
+            "| quantity | c | plateau | area exponent |",
+            "|---|---|---|---|",
+        ]
         for q, m in doc["quantities"].items():
             lines.append(f"| {q} | {m['c']:.3f} | {m['plateau']:g} | {m.get('area_exponent', '')} |")
             if "cornered_c" in m:
-                lines.append(f"| {q}, faces with corners | {m['cornered_c']:.3f} | {m['plateau']:g} | "
-                             f"{m.get('area_exponent', '')} |")
+                lines.append(
+                    f"| {q}, faces with corners | {m['cornered_c']:.3f} | {m['plateau']:g} | "
+                    f"{m.get('area_exponent', '')} |"
+                )
         lines += ["", "Measured relative errors (value / exact - 1) that the fit covers:", ""]
         for q, m in doc["quantities"].items():
             faces = dict(m["faces"])
@@ -263,8 +327,10 @@ def write_docs() -> None:
 
 
 def main(which=("bem_griffith", "bem_energy", "bem_griffith_corners"), measure=True):
-    paths = {"bem_energy": ROOT / "bem_energy" / "error_model.json",
-             "bem_griffith": ROOT / "bem_griffith" / "error_model.json"}
+    paths = {
+        "bem_energy": ROOT / "bem_energy" / "error_model.json",
+        "bem_griffith": ROOT / "bem_griffith" / "error_model.json",
+    }
     if measure and "bem_energy" in which:
         write(paths["bem_energy"], energy(), "the energy BEM's stiffness on one grid (collocation kernel)")
     if measure and "bem_griffith" in which:

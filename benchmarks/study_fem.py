@@ -19,6 +19,7 @@ rho 13.0 - 18.7.  Graded at grading 1 1.9e-6 (k = 0.9) ... 1.0e-5 (k = 0.25) [2.
 rho x g 9.2 - 11.0; at grading 2 3.6e-5 ... 2.9e-4 [3.4 - 3.5] and at grading 4
 4.2e-4 ... 4.0e-3 [4.5 - 4.6], rho x g 11.6 - 12.8.
 """
+
 from __future__ import annotations
 
 import sys
@@ -38,8 +39,11 @@ def exact(mat, a=1.0, w=1.0):
     """(K, F_A, d_c) of Eqs. 1, 6, 4 or 34, 39, 38."""
     if isinstance(mat, cs.Homogeneous):
         E = mat.effective_modulus
-        return (T.kendall_stiffness(E_star=E, radius=a), T.kendall_adhesion_force(E_star=E, radius=a, work=w),
-                T.kendall_critical_approach(E_star=E, radius=a, work=w))
+        return (
+            T.kendall_stiffness(E_star=E, radius=a),
+            T.kendall_adhesion_force(E_star=E, radius=a, work=w),
+            T.kendall_critical_approach(E_star=E, radius=a, work=w),
+        )
     kw = dict(E0=mat.surface_modulus, c0=mat.reference_depth, k=mat.exponent, radius=a)
     return (T.graded_stiffness(**kw), T.graded_adhesion_force(**kw, work=w), T.graded_critical_approach(**kw, work=w))
 
@@ -49,16 +53,32 @@ def errors(r, mat, a=1.0, w=1.0):
     K, F, d = exact(mat, a, w)
     k = 0.0 if isinstance(mat, cs.Homogeneous) else mat.exponent
     dK = (1 + k) * K / a
-    return {"stiffness": r.stiffness / K - 1, "pulloff_force": r.pulloff_force / F - 1,
-            "pulloff_approach": r.pulloff_approach / d - 1, "dK_da": r.info["dK_da_vce"] / dK - 1,
-            "comparison_stiffness": r.info["comparison_stiffness"] / K - 1,
-            "comparison_dK_da": r.info["comparison_dK_da"] / dK - 1}
+    return {
+        "stiffness": r.stiffness / K - 1,
+        "pulloff_force": r.pulloff_force / F - 1,
+        "pulloff_approach": r.pulloff_approach / d - 1,
+        "dK_da": r.info["dK_da_vce"] / dK - 1,
+        "comparison_stiffness": r.info["comparison_stiffness"] / K - 1,
+        "comparison_dK_da": r.info["comparison_dK_da"] / dK - 1,
+    }
 
 
 def main(hom_gradings=(1.0, 2.0), graded_gradings=(1.0, 2.0, 4.0)):
     rows = []
-    head = ["case", "grading", "dofs", "wall s", "dK/K", "dF/F", "dd/d", "estimate", "est/err", "rho K", "rho K'",
-            "rho g"]
+    head = [
+        "case",
+        "grading",
+        "dofs",
+        "wall s",
+        "dK/K",
+        "dF/F",
+        "dd/d",
+        "estimate",
+        "est/err",
+        "rho K",
+        "rho K'",
+        "rho g",
+    ]
     for cases, gradings in ((HOMOGENEOUS, hom_gradings), (GRADED, graded_gradings)):
         for name, mat in cases:
             sc = cs.Scene(cs.Indenter(cs.Circle(1.0)), mat, cs.Adhesion(1.0))
@@ -70,10 +90,22 @@ def main(hom_gradings=(1.0, 2.0), graded_gradings=(1.0, 2.0, 4.0)):
                 worst = max(abs(e[q]) for q in ("stiffness", "pulloff_force", "pulloff_approach"))
                 rho_K = e["comparison_stiffness"] / e["stiffness"]
                 rho_dK = e["comparison_dK_da"] / e["dK_da"]
-                rows.append([name, g, r.info["dofs"], f"{wall:.1f}", f"{e['stiffness']:+.2e}", f"{e['pulloff_force']:+.2e}",
-                             f"{e['pulloff_approach']:+.2e}", f"{r.accuracy_estimate:.2e}", f"{r.accuracy_estimate / worst:.2f}",
-                             f"{rho_K:.1f}", f"{rho_dK:.1f}",
-                             "" if isinstance(mat, cs.Homogeneous) else f"{min(rho_K, rho_dK) * g:.1f}"])
+                rows.append(
+                    [
+                        name,
+                        g,
+                        r.info["dofs"],
+                        f"{wall:.1f}",
+                        f"{e['stiffness']:+.2e}",
+                        f"{e['pulloff_force']:+.2e}",
+                        f"{e['pulloff_approach']:+.2e}",
+                        f"{r.accuracy_estimate:.2e}",
+                        f"{r.accuracy_estimate / worst:.2f}",
+                        f"{rho_K:.1f}",
+                        f"{rho_dK:.1f}",
+                        "" if isinstance(mat, cs.Homogeneous) else f"{min(rho_K, rho_dK) * g:.1f}",
+                    ]
+                )
                 print(*rows[-1], file=sys.stderr, flush=True)
     print(_timing.table(rows, head))
 
@@ -84,8 +116,10 @@ def locking(nus=(0.3, 0.49, 0.499, 0.4999, 0.5)):
 
     rows = []
     for nu in nus:
-        mixed = fr.solve(cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, nu), cs.Adhesion(1.0)),
-                         fr.FemSettings(grading=1.0))
+        mixed = fr.solve(
+            cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, nu), cs.Adhesion(1.0)),
+            fr.FemSettings(grading=1.0),
+        )
         K = T.kendall_stiffness(E_star=1.0 / (1 - nu**2), radius=1.0)
         p1 = f"{displacement_only_stiffness(nu, grading=0.5) - 1:+.2e}" if nu < 0.5 else "n/a"
         p2 = f"{displacement_only_stiffness(nu, order=2, grading=0.5) - 1:+.2e}" if nu < 0.5 else "n/a"

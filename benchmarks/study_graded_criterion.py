@@ -18,6 +18,7 @@ Columns: the stress factor of a grid-aligned edge cell (top of the circle) and o
 stressed edge cell, kappa implied, kappa of Eq. 42, and their ratio.  Measured pull-offs to
 compare with: ``benchmarks/study_griffith_graded.py``.
 """
+
 from __future__ import annotations
 
 import math
@@ -37,7 +38,9 @@ def stress_factors(k: float, per_radius: int) -> tuple[float, float]:
     """(aligned-edge, largest) edge-cell pressure / (K_k Delta^((k-1)/2)), pressed state."""
     h = 1.0 / per_radius
     mat = cs.Homogeneous(0.75, 0.5) if k == 0 else cs.PowerLawGraded(1.0, 1.0, k)
-    prob = build_problem(cs.Scene(cs.Indenter(cs.Circle(1.0)), mat, cs.Adhesion(1.0)), bg.GriffithSettings(grid=cs.Grid(spacing=h)))
+    prob = build_problem(
+        cs.Scene(cs.Indenter(cs.Circle(1.0)), mat, cs.Adhesion(1.0)), bg.GriffithSettings(grid=cs.Grid(spacing=h))
+    )
     S = prob.face
     n = int(S.sum())
     A = spla.LinearOperator((n, n), matvec=lambda v: prob.operator.apply_masked(v, S)[S])
@@ -47,7 +50,7 @@ def stress_factors(k: float, per_radius: int) -> tuple[float, float]:
     P = np.zeros(S.shape)
     P[S] = p
     K = T.graded_stiffness(E0=1.0, c0=1.0, k=k, radius=1.0) if k else 2.0
-    Kk = K * (k + 1) / (2 * math.pi) * 2.0 ** ((k - 1) / 2)     # intensity per unit approach, a = 1
+    Kk = K * (k + 1) / (2 * math.pi) * 2.0 ** ((k - 1) / 2)  # intensity per unit approach, a = 1
     unit = Kk * h ** ((k - 1) / 2)
     x = prob.origin[0] + h * np.arange(S.shape[0])
     top = [P[c, np.flatnonzero(S[c])[-1]] for c in np.flatnonzero(np.abs(x) < h)]
@@ -59,15 +62,28 @@ def main(ks=(-0.75, -0.5, -0.25, 0.0, 0.25, 0.5, 0.75), Ns=(32, 64)):
     rows = []
     for k in ks:
         F = T.graded_adhesion_force(E0=1.0, c0=1.0, k=k, radius=1.0, work=1.0) if k else math.sqrt(8 * math.pi * 4 / 3)
-        Kc = F * (k + 1) / (2 * math.pi) * 2.0 ** ((k - 1) / 2)     # critical intensity, E0 = w = c0 = 1
+        Kc = F * (k + 1) / (2 * math.pi) * 2.0 ** ((k - 1) / 2)  # critical intensity, E0 = w = c0 = 1
         kappa = T.graded_criterion_constant(k) if k else math.sqrt((4 / 3) / T.element_energy_constant())
         for N in Ns:
             aligned, largest = stress_factors(k, N)
             implied = largest * Kc
-            rows.append([f"{k:+.2f}", N, f"{aligned:.4f}", f"{largest:.4f}", f"{implied:.4f}", f"{kappa:.4f}",
-                         f"{kappa / implied:.4f}"])
-    print(_timing.table(rows, ["k", "N/radius", "aligned cell", "largest cell", "kappa implied",
-                               "kappa Eq. 42", "predicted F/F39"]), flush=True)
+            rows.append(
+                [
+                    f"{k:+.2f}",
+                    N,
+                    f"{aligned:.4f}",
+                    f"{largest:.4f}",
+                    f"{implied:.4f}",
+                    f"{kappa:.4f}",
+                    f"{kappa / implied:.4f}",
+                ]
+            )
+    print(
+        _timing.table(
+            rows, ["k", "N/radius", "aligned cell", "largest cell", "kappa implied", "kappa Eq. 42", "predicted F/F39"]
+        ),
+        flush=True,
+    )
 
 
 if __name__ == "__main__":

@@ -18,6 +18,7 @@ moves by 2-4 % per halving of l_c, so the table shows the trend, not a limit.  l
 took 25 min per k = 0.5 face on this machine (the whole script about an hour); ``--quick``
 stops at 0.08.
 """
+
 from __future__ import annotations
 
 import math
@@ -31,7 +32,7 @@ import contact_scene as cs
 from bem_energy.potentials import process_zone_modulus, range_for_process_zone
 from contact_scene import theory as T
 
-FACES = {"circle": cs.Circle(1.0), "square": cs.Square(math.sqrt(math.pi))}   # both of area pi
+FACES = {"circle": cs.Circle(1.0), "square": cs.Square(math.sqrt(math.pi))}  # both of area pi
 K = 0.5
 
 
@@ -39,10 +40,13 @@ def griffith(N):
     out = {}
     for k in (0.0, K):
         for name, face in FACES.items():
-            r = bg.solve(cs.Scene(cs.Indenter(face), cs.PowerLawGraded(1.0, 1.0, k), cs.Adhesion(1.0)),
-                         bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N), graded_criterion="eq42"))
-            out[k, name] = T.force_at_nominal_area(r.pulloff_force, area=r.info["face_elements"] * r.grid_spacing**2,
-                                                   nominal_area=math.pi, k=k)
+            r = bg.solve(
+                cs.Scene(cs.Indenter(face), cs.PowerLawGraded(1.0, 1.0, k), cs.Adhesion(1.0)),
+                bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N), graded_criterion="eq42"),
+            )
+            out[k, name] = T.force_at_nominal_area(
+                r.pulloff_force, area=r.info["face_elements"] * r.grid_spacing**2, nominal_area=math.pi, k=k
+            )
     return out
 
 
@@ -53,9 +57,15 @@ def energy(lc_over_a, per_zone=8.0, work=0.02):
         for name, face in FACES.items():
             h = min(lc_over_a / per_zone, 1 / 24)
             rho = range_for_process_zone(modulus=process_zone_modulus(mat), work=work, length=lc_over_a, exponent=k)
-            r = be.pull_off(cs.Scene(cs.Indenter(face), mat, cs.Adhesion(work)), be.EnergySettings(grid=cs.Grid(spacing=h)),
-                            spacing=h, potential=be.Potential(work, rho))
-            out[k, name] = T.force_at_nominal_area(r.pulloff_force, area=cs.rasterise(face, h).area, nominal_area=math.pi, k=k)
+            r = be.pull_off(
+                cs.Scene(cs.Indenter(face), mat, cs.Adhesion(work)),
+                be.EnergySettings(grid=cs.Grid(spacing=h)),
+                spacing=h,
+                potential=be.Potential(work, rho),
+            )
+            out[k, name] = T.force_at_nominal_area(
+                r.pulloff_force, area=cs.rasterise(face, h).area, nominal_area=math.pi, k=k
+            )
     return out
 
 

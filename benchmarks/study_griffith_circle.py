@@ -6,6 +6,7 @@ Prints, for each N (elements per radius): F_A / F_Kendall - 1 against the nomina
 against the rasterised area's equivalent radius, d_c / d_Kendall - 1, the stiffness error
 against the rasterised radius, the wall time, and a fitted rate of the stiffness error.
 """
+
 from __future__ import annotations
 
 import math
@@ -33,9 +34,21 @@ def main(Ns=(16, 24, 32, 48, 64, 96, 128)):
         Fr = T.kendall_adhesion_force(E_star=1.0, radius=a_r, work=1.0)
         ke = r.stiffness / (2 * a_r) - 1
         kerr.append(abs(ke))
-        rows.append([N, f"{r.pulloff_force / FK - 1:+.5f}", f"{r.pulloff_force / Fr - 1:+.5f}",
-                     f"{r.pulloff_approach / dK - 1:+.5f}", f"{ke:+.5f}", f"{0.5 / N:.5f}", f"{wall:.2f}"])
-        print(_timing.table(rows, ["N", "dF/F nominal", "dF/F raster", "dd/d", "dK/K raster", "0.5/N", "wall s"]), flush=True)
+        rows.append(
+            [
+                N,
+                f"{r.pulloff_force / FK - 1:+.5f}",
+                f"{r.pulloff_force / Fr - 1:+.5f}",
+                f"{r.pulloff_approach / dK - 1:+.5f}",
+                f"{ke:+.5f}",
+                f"{0.5 / N:.5f}",
+                f"{wall:.2f}",
+            ]
+        )
+        print(
+            _timing.table(rows, ["N", "dF/F nominal", "dF/F raster", "dd/d", "dK/K raster", "0.5/N", "wall s"]),
+            flush=True,
+        )
     if len(Ns) > 2:
         print(f"stiffness error ~ N^-{-np.polyfit(np.log(Ns), np.log(kerr), 1)[0]:.2f}")
 

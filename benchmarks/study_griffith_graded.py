@@ -28,6 +28,7 @@ radius (42 preconditioned), as a condition number growing like N^(1 - k) implies
 15 min for |k| <= 0.75; the k < -0.75 runs cost most: at 181 per radius k = -0.95 needs 3.4
 times the matvecs of k = 0.
 """
+
 from __future__ import annotations
 
 import math
@@ -79,8 +80,18 @@ def main(ks=GRADED_EXPONENTS, Ns=(32, 45, 64, 90, 128, 181)):
     for N in Ns:
         r = _converged(bg.solve(circle(0.0), eq42(N)))
         base[N] = scaled_ratio(r, 0.0)[1]
-        rows.append(["+0.00", N, f"{scaled_ratio(r, 0.0)[0]:.5f}", f"{base[N]:.5f}", "1", r.info["matvecs"],
-                     _per_solve(r), f"{r.timings['pull']:.1f}"])
+        rows.append(
+            [
+                "+0.00",
+                N,
+                f"{scaled_ratio(r, 0.0)[0]:.5f}",
+                f"{base[N]:.5f}",
+                "1",
+                r.info["matvecs"],
+                _per_solve(r),
+                f"{r.timings['pull']:.1f}",
+            ]
+        )
     headers = ["k", "N/radius", "F/F39", "scaled F/F39", "rho = scaled / (k = 0)", "matvecs", "CG it/solve", "pull s"]
     print(_timing.table(rows, headers), flush=True)
     summary = []
@@ -90,17 +101,42 @@ def main(ks=GRADED_EXPONENTS, Ns=(32, 45, 64, 90, 128, 181)):
             r = _converged(bg.solve(circle(k), eq42(N)))
             raw, sc = scaled_ratio(r, k)
             rho.append(sc / base[N])
-            rows.append([f"{k:+.2f}", N, f"{raw:.5f}", f"{sc:.5f}", f"{rho[-1]:.5f}", r.info["matvecs"],
-                         _per_solve(r), f"{r.timings['pull']:.1f}"])
+            rows.append(
+                [
+                    f"{k:+.2f}",
+                    N,
+                    f"{raw:.5f}",
+                    f"{sc:.5f}",
+                    f"{rho[-1]:.5f}",
+                    r.info["matvecs"],
+                    _per_solve(r),
+                    f"{r.timings['pull']:.1f}",
+                ]
+            )
             print(_timing.table(rows, headers), flush=True)
         (r_inf, c), resid = fit(Ns, rho, 1.0)
         (r_half, _), _ = fit(Ns, rho, 0.5)
         u = max(abs(r_half - r_inf), resid)
         stored = CIRCLE_RATIO.get(k, (float("nan"), float("nan")))
-        summary.append([f"{k:+.2f}", f"{r_inf:.5f}", f"{c / r_inf:+.3f}", f"{resid:.5f}", f"{r_half:.5f}", f"{u:.5f}",
-                        f"{stored[0]:.5f}", f"{stored[1]:.5f}"])
-        print(_timing.table(summary, ["k", "r = rho_inf (c/N fit)", "c / r", "max resid", "rho_inf (c/sqrt N)", "u",
-                                      "stored r", "stored u"]), flush=True)
+        summary.append(
+            [
+                f"{k:+.2f}",
+                f"{r_inf:.5f}",
+                f"{c / r_inf:+.3f}",
+                f"{resid:.5f}",
+                f"{r_half:.5f}",
+                f"{u:.5f}",
+                f"{stored[0]:.5f}",
+                f"{stored[1]:.5f}",
+            ]
+        )
+        print(
+            _timing.table(
+                summary,
+                ["k", "r = rho_inf (c/N fit)", "c / r", "max resid", "rho_inf (c/sqrt N)", "u", "stored r", "stored u"],
+            ),
+            flush=True,
+        )
     # the calibration rescales and nothing else; the calibrated circle at a resolution not in the sweep
     check = []
     N = 40
@@ -109,19 +145,38 @@ def main(ks=GRADED_EXPONENTS, Ns=(32, 45, 64, 90, 128, 181)):
         a = bg.solve(circle(k), eq42(N))
         b = bg.solve(circle(k), bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)))
         same = np.array_equal(a.curve.contact_area, b.curve.contact_area)
-        check.append([f"{k:+.2f}", N, str(same), f"{a.pulloff_force / b.pulloff_force:.6f}",
-                      f"{scaled_ratio(b, k)[1] - 1:+.4f}", f"{b0 - 1:+.4f}"])
+        check.append(
+            [
+                f"{k:+.2f}",
+                N,
+                str(same),
+                f"{a.pulloff_force / b.pulloff_force:.6f}",
+                f"{scaled_ratio(b, k)[1] - 1:+.4f}",
+                f"{b0 - 1:+.4f}",
+            ]
+        )
     # the calibrated circle's distance from Eq. 39 is a residual of the calibration (it was
     # fitted to make it small), not a validation; the homogeneous circle's is (Kendall)
-    print(_timing.table(check, ["k", "N/radius", "same contact sets", "F(eq42)/F(calibrated)",
-                                "calibration residual: scaled F/F39 - 1", "k = 0: F/F_K - 1"]))
+    print(
+        _timing.table(
+            check,
+            [
+                "k",
+                "N/radius",
+                "same contact sets",
+                "F(eq42)/F(calibrated)",
+                "calibration residual: scaled F/F39 - 1",
+                "k = 0: F/F_K - 1",
+            ],
+        )
+    )
 
 
 if __name__ == "__main__":
     args = sys.argv[1:]
     kw = {}
     if "--k" in args:
-        kw["ks"] = tuple(float(x) for x in args[args.index("--k") + 1:] if not x.startswith("--"))
+        kw["ks"] = tuple(float(x) for x in args[args.index("--k") + 1 :] if not x.startswith("--"))
     if "--quick" in args:
         kw.setdefault("ks", (-0.5, 0.5))
         kw["Ns"] = (32, 45, 64)

@@ -7,6 +7,7 @@ the square's beta against Eq. 9's 1.021, and the same-grid difference between th
 
 Stiffness by a direct solve C_SS p = 1 (conjugate gradients to 1e-11), K = Delta^2 sum p,
 E* = 1 (homogeneous), E0 = c0 = 1 (graded)."""
+
 import math
 
 import numpy as np
@@ -17,7 +18,10 @@ from contact_scene import theory as T
 from halfspace import HalfSpaceOperator, graded_influence, love_influence, padded_shape
 from halfspace.collocation import collocated_graded_influence, collocated_influence
 
-KERNELS = {"love": (love_influence, graded_influence), "collocation": (collocated_influence, collocated_graded_influence)}
+KERNELS = {
+    "love": (love_influence, graded_influence),
+    "collocation": (collocated_influence, collocated_graded_influence),
+}
 
 
 def stiffness(shape, spacing, kernel, k=0.0):
@@ -29,8 +33,12 @@ def stiffness(shape, spacing, kernel, k=0.0):
     op = HalfSpaceOperator(K, (nx, ny))
     m = r.mask
     n = int(m.sum())
-    p, info = cg(LinearOperator((n, n), matvec=lambda v: op.apply_masked(v, m)[m], dtype=float), np.ones(n),
-                 rtol=1e-11, maxiter=20_000)
+    p, info = cg(
+        LinearOperator((n, n), matvec=lambda v: op.apply_masked(v, m)[m], dtype=float),
+        np.ones(n),
+        rtol=1e-11,
+        maxiter=20_000,
+    )
     if info:
         raise RuntimeError(f"CG did not converge ({info})")
     return spacing**2 * float(p.sum()), r.area
@@ -49,17 +57,34 @@ def main():
             for N in Ns:
                 K, A = stiffness(cs.Circle(1.0), 1.0 / N, kernel, k)
                 a = math.sqrt(A / math.pi)
-                ref = T.graded_stiffness(E0=1.0, c0=1.0, k=k, radius=a) if k else T.kendall_stiffness(E_star=1.0, radius=a)
+                ref = (
+                    T.graded_stiffness(E0=1.0, c0=1.0, k=k, radius=a)
+                    if k
+                    else T.kendall_stiffness(E_star=1.0, radius=a)
+                )
                 errs.append(K / ref - 1)
-            print(f"  {kernel:12s}" + " ".join(f"{e:+.5f}" for e in errs)
-                  + f"   N*err {errs[-1] * Ns[-1]:+.3f}, fitted rate (16-128) {rate(Ns[1:], errs[1:]):.2f}")
+            print(
+                f"  {kernel:12s}"
+                + " ".join(f"{e:+.5f}" for e in errs)
+                + f"   N*err {errs[-1] * Ns[-1]:+.3f}, fitted rate (16-128) {rate(Ns[1:], errs[1:]):.2f}"
+            )
     print("flat square of side 2, N elements per half side: beta = K / (2 E* sqrt(A/pi)); Eq. 9: 1.021")
     for kernel in KERNELS:
         b = np.array([stiffness(cs.Square(2.0), 1.0 / N, kernel)[0] / (2 * math.sqrt(4 / math.pi)) for N in Ns])
-        print(f"  {kernel:12s}" + " ".join(f"{x:.5f}" for x in b) + f"   first-order extrapolation {2 * b[-1] - b[-2]:.5f}")
+        print(
+            f"  {kernel:12s}"
+            + " ".join(f"{x:.5f}" for x in b)
+            + f"   first-order extrapolation {2 * b[-1] - b[-2]:.5f}"
+        )
     print("same grid: (K_love / K_collocation - 1) * N, N per equivalent radius")
-    shapes = {"circle": cs.Circle(1.0), "square": cs.Square(2.0), "square 45 deg": cs.Square(2.0, rotation_deg=45.0),
-              "triangle": cs.Triangle.equilateral(2.0), "rectangle 4:1": cs.Rectangle(4.0, 1.0), "star 5": cs.Star(5, 1.0, 0.5)}
+    shapes = {
+        "circle": cs.Circle(1.0),
+        "square": cs.Square(2.0),
+        "square 45 deg": cs.Square(2.0, rotation_deg=45.0),
+        "triangle": cs.Triangle.equilateral(2.0),
+        "rectangle 4:1": cs.Rectangle(4.0, 1.0),
+        "star 5": cs.Star(5, 1.0, 0.5),
+    }
     for name, sh in shapes.items():
         row = []
         for N in Ns[:4]:

@@ -1,4 +1,5 @@
 """Discretisation settings, kept apart from the physics of a scene."""
+
 from __future__ import annotations
 
 import math
@@ -45,16 +46,19 @@ class Grid:
         elif self.elements_per_radius is None:
             raise SceneError("grid.elements_per_radius", "give elements_per_radius or spacing")
         if self.elements_per_radius is not None:
-            object.__setattr__(self, "elements_per_radius",
-                               check_real("grid.elements_per_radius", self.elements_per_radius, lo=0, lo_open=True, hi=1e5))
+            object.__setattr__(
+                self,
+                "elements_per_radius",
+                check_real("grid.elements_per_radius", self.elements_per_radius, lo=0, lo_open=True, hi=1e5),
+            )
 
     def spacing_for(self, shape: Shape) -> float:
         if self.spacing is not None:
             h = self.spacing
         else:
-            assert self.elements_per_radius is not None      # __post_init__ requires one of the two
+            assert self.elements_per_radius is not None  # __post_init__ requires one of the two
             h = shape.equivalent_radius / self.elements_per_radius
         if self.periodic:
-            assert self.period is not None                   # __post_init__ requires it when periodic
+            assert self.period is not None  # __post_init__ requires it when periodic
             h = self.period / math.ceil(self.period / h * (1 - 1e-12))
         return h

@@ -3,6 +3,7 @@
 Every message names the offending field (dotted, as in the scene file) and the
 allowed range, so that the CLI can print it as is and exit with status 2.
 """
+
 from __future__ import annotations
 
 import math
@@ -45,10 +46,7 @@ def check_real(field: str, value, *, lo=None, hi=None, lo_open=False, hi_open=Fa
     v = float(value)
     if not math.isfinite(v):
         raise SceneError(field, f"must be a finite number{in_range} (got {value!r})")
-    bad = (
-        (lo is not None and (v <= lo if lo_open else v < lo))
-        or (hi is not None and (v >= hi if hi_open else v > hi))
-    )
+    bad = (lo is not None and (v <= lo if lo_open else v < lo)) or (hi is not None and (v >= hi if hi_open else v > hi))
     if bad:
         raise SceneError(field, f"must be {allowed} (got {v:g})")
     return v

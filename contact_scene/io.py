@@ -21,6 +21,7 @@ Composite shapes nest tables: ``shape = "union"`` with ``parts = [{shape = "circ
 ``shape = "difference"`` with ``base = {...}`` and ``cuts = [{...}]``.  An image face gives
 ``path`` relative to the scene file.
 """
+
 from __future__ import annotations
 
 import math
@@ -78,7 +79,9 @@ def shape_from_dict(d: dict, *, base_dir: Path | None = None, section: str = "in
     if not isinstance(kind, str) or kind not in SHAPE_KEYS:
         raise SceneError(f"{section}.shape", f"unknown shape {kind!r}; one of: {', '.join(sorted(SHAPE_KEYS))}")
     required, optional = SHAPE_KEYS[kind]
-    _check_keys(section, d, required | optional | _COMMON | (_PROFILE_KEYS if section == "indenter" else set()), required)
+    _check_keys(
+        section, d, required | optional | _COMMON | (_PROFILE_KEYS if section == "indenter" else set()), required
+    )
     params = {k: d[k] for k in required | optional if k in d}
     if "center" in params:
         params["center"] = tuple(params["center"]) if isinstance(params["center"], list) else params["center"]
@@ -140,7 +143,9 @@ def _build(kind, params, base_dir, section):
         parts = params["parts"]
         if not isinstance(parts, list) or not parts:
             raise SceneError(f"{section}.parts", "must be a non-empty list of shape tables")
-        return shapes.Union(tuple(shape_from_dict(p, base_dir=base_dir, section=f"{section}.parts[{i}]") for i, p in enumerate(parts)))
+        return shapes.Union(
+            tuple(shape_from_dict(p, base_dir=base_dir, section=f"{section}.parts[{i}]") for i, p in enumerate(parts))
+        )
     if kind == "difference":
         cuts = params["cuts"]
         if not isinstance(cuts, list):
@@ -184,8 +189,10 @@ def _profile_from_dict(d: dict):
 
 def _material_from_dict(d: dict):
     if not isinstance(d, dict):
-        raise SceneError("material", f"must be a table, [material] with model = 'homogeneous' or 'power_law_graded' "
-                         f"and its moduli (got {d!r})")
+        raise SceneError(
+            "material",
+            f"must be a table, [material] with model = 'homogeneous' or 'power_law_graded' and its moduli (got {d!r})",
+        )
     model = d.get("model")
     if not isinstance(model, str):
         model = repr(model)
@@ -193,15 +200,23 @@ def _material_from_dict(d: dict):
         _check_keys("material", d, {"model", "youngs_modulus", "poisson_ratio"}, {"youngs_modulus", "poisson_ratio"})
         return Homogeneous(d["youngs_modulus"], d["poisson_ratio"])
     if model == "power_law_graded":
-        _check_keys("material", d, {"model", "surface_modulus", "reference_depth", "exponent"},
-                    {"surface_modulus", "reference_depth", "exponent"})
+        _check_keys(
+            "material",
+            d,
+            {"model", "surface_modulus", "reference_depth", "exponent"},
+            {"surface_modulus", "reference_depth", "exponent"},
+        )
         return PowerLawGraded(d["surface_modulus"], d["reference_depth"], d["exponent"])
     raise SceneError("material.model", f"must be 'homogeneous' or 'power_law_graded' (got {model!r})")
 
 
 def scene_from_dict(d: dict, *, base_dir: Path | None = None) -> Scene:
-    _check_keys("scene", d, {"name", "description", "indenter", "material", "adhesion", "loading", "outputs"},
-                {"indenter", "material", "adhesion"})
+    _check_keys(
+        "scene",
+        d,
+        {"name", "description", "indenter", "material", "adhesion", "loading", "outputs"},
+        {"indenter", "material", "adhesion"},
+    )
     name = d.get("name", "")
     if not isinstance(name, str):
         raise SceneError("name", "must be a string")
@@ -211,15 +226,20 @@ def scene_from_dict(d: dict, *, base_dir: Path | None = None) -> Scene:
     material = _material_from_dict(d["material"])
     adhesion_table = d["adhesion"]
     _check_keys("adhesion", adhesion_table, {"work_of_adhesion", "range", "potential"}, {"work_of_adhesion"})
-    adhesion = Adhesion(adhesion_table["work_of_adhesion"], adhesion_table.get("range"),
-                        adhesion_table.get("potential", "exponential"))
+    adhesion = Adhesion(
+        adhesion_table["work_of_adhesion"], adhesion_table.get("range"), adhesion_table.get("potential", "exponential")
+    )
     loading_table = d.get("loading", {})
     _check_keys("loading", loading_table, {"press_approach", "press_force", "turning_points", "pull_limit"})
     turning_points = loading_table.get("turning_points", [])
     if not isinstance(turning_points, list):
         raise SceneError("loading.turning_points", "must be a list of approaches")
-    loading = Loading(loading_table.get("press_approach"), loading_table.get("press_force"), tuple(turning_points),
-                      loading_table.get("pull_limit"))
+    loading = Loading(
+        loading_table.get("press_approach"),
+        loading_table.get("press_force"),
+        tuple(turning_points),
+        loading_table.get("pull_limit"),
+    )
     outputs_table = d.get("outputs", {})
     _check_keys("outputs", outputs_table, {"curve", "snapshots", "fields"})
     for k in ("curve", "fields"):
@@ -247,6 +267,7 @@ def load_scene(path) -> Scene:
     scene = scene_from_dict(d, base_dir=path.parent)
     if not scene.name:
         import dataclasses
+
         scene = dataclasses.replace(scene, name=path.stem)
     return scene
 
@@ -278,8 +299,12 @@ def summarise(scene: Scene) -> dict:
         out["effective_modulus"] = E
         if flat:
             out["stiffness_estimate"] = theory.compact_shape_stiffness(E_star=E, area=shape.nominal_area)
-            out["upper_bound_force"] = theory.upper_bound_force(E_star=E, work=w, area=shape.nominal_area, filling_factor=phi)
-            out["upper_bound_approach"] = theory.upper_bound_approach(E_star=E, work=w, area=shape.nominal_area, filling_factor=phi)
+            out["upper_bound_force"] = theory.upper_bound_force(
+                E_star=E, work=w, area=shape.nominal_area, filling_factor=phi
+            )
+            out["upper_bound_approach"] = theory.upper_bound_approach(
+                E_star=E, work=w, area=shape.nominal_area, filling_factor=phi
+            )
             out["lower_bound_force"] = theory.lower_bound_force(E_star=E, work=w, incircle_radius=inc.radius)
             out["lower_bound_approach"] = theory.lower_bound_approach(E_star=E, work=w, incircle_radius=inc.radius)
             if isinstance(shape, shapes.Circle):
@@ -295,7 +320,9 @@ def summarise(scene: Scene) -> dict:
         if flat:
             a_eq = shape.equivalent_radius
             out["stiffness_estimate"] = theory.graded_stiffness(E0=E0, c0=c0, k=k, radius=a_eq)
-            out["upper_bound_force"] = theory.graded_adhesion_force(E0=E0, c0=c0, k=k, radius=a_eq, work=w, filling_factor=phi)
+            out["upper_bound_force"] = theory.graded_adhesion_force(
+                E0=E0, c0=c0, k=k, radius=a_eq, work=w, filling_factor=phi
+            )
             out["upper_bound_approach"] = theory.graded_critical_approach(E0=E0, c0=c0, k=k, radius=a_eq, work=phi * w)
             out["lower_bound_force"] = theory.graded_adhesion_force(E0=E0, c0=c0, k=k, radius=inc.radius, work=w)
             out["lower_bound_approach"] = theory.graded_critical_approach(E0=E0, c0=c0, k=k, radius=inc.radius, work=w)

@@ -1,4 +1,5 @@
 """Elastic half-spaces: homogeneous, and power-law graded E(z) = E0 (z/c0)^k (Eq. 32)."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -19,9 +20,13 @@ class Homogeneous(Material):
     kind = "homogeneous"
 
     def __post_init__(self):
-        object.__setattr__(self, "youngs_modulus", check_real("material.youngs_modulus", self.youngs_modulus, lo=0, lo_open=True))
+        object.__setattr__(
+            self, "youngs_modulus", check_real("material.youngs_modulus", self.youngs_modulus, lo=0, lo_open=True)
+        )
         # nu = -1 would make E* infinite; nu > 1/2 is not positive definite
-        object.__setattr__(self, "poisson_ratio", check_real("material.poisson_ratio", self.poisson_ratio, lo=-1, hi=0.5, lo_open=True))
+        object.__setattr__(
+            self, "poisson_ratio", check_real("material.poisson_ratio", self.poisson_ratio, lo=-1, hi=0.5, lo_open=True)
+        )
 
     @property
     def effective_modulus(self) -> float:
@@ -43,9 +48,15 @@ class PowerLawGraded(Material):
     kind = "power_law_graded"
 
     def __post_init__(self):
-        object.__setattr__(self, "surface_modulus", check_real("material.surface_modulus", self.surface_modulus, lo=0, lo_open=True))
-        object.__setattr__(self, "reference_depth", check_real("material.reference_depth", self.reference_depth, lo=0, lo_open=True))
-        object.__setattr__(self, "exponent", check_real("material.exponent", self.exponent, lo=-1, hi=1, lo_open=True, hi_open=True))
+        object.__setattr__(
+            self, "surface_modulus", check_real("material.surface_modulus", self.surface_modulus, lo=0, lo_open=True)
+        )
+        object.__setattr__(
+            self, "reference_depth", check_real("material.reference_depth", self.reference_depth, lo=0, lo_open=True)
+        )
+        object.__setattr__(
+            self, "exponent", check_real("material.exponent", self.exponent, lo=-1, hi=1, lo_open=True, hi_open=True)
+        )
 
     @property
     def poisson_ratio(self) -> float:

@@ -4,6 +4,7 @@ The gap under a punch at approach d is g = u - (d - h): a flat face has h = 0.  
 sits at ``apex`` (default: the face's origin).  The paper validates its BEM on the flat
 cylinder (Kendall), the paraboloid (JKR) and the cone.
 """
+
 from __future__ import annotations
 
 import math
@@ -76,7 +77,8 @@ class Cone(Profile):
 
     def __post_init__(self):
         object.__setattr__(
-            self, "half_angle_deg",
+            self,
+            "half_angle_deg",
             check_real("indenter.half_angle_deg", self.half_angle_deg, lo=0, hi=90, lo_open=True, hi_open=True),
         )
 

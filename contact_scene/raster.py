@@ -6,6 +6,7 @@ Because centroid and cell centres move with the shape, rotating (or mirroring) a
 grid together gives exactly the same cells; rotating only the shape gives the same face up to
 the staircase of the boundary.  The mask is indexed ``mask[ix, iy]`` with x along axis 0.
 """
+
 from __future__ import annotations
 
 import math
@@ -24,7 +25,7 @@ MIN_INCIRCLE_CELLS = 4
 
 @dataclass(frozen=True, eq=False)
 class Raster:
-    mask: np.ndarray          # bool, [ix, iy]
+    mask: np.ndarray  # bool, [ix, iy]
     spacing: float
     origin: tuple[float, float]  # centre of cell (0, 0)
 
@@ -47,8 +48,9 @@ class Raster:
         return np.meshgrid(x, y, indexing="ij")
 
 
-def rasterise(shape: Shape, spacing: float, *, min_incircle_cells: float = MIN_INCIRCLE_CELLS,
-              field: str = "grid.spacing") -> Raster:
+def rasterise(
+    shape: Shape, spacing: float, *, min_incircle_cells: float = MIN_INCIRCLE_CELLS, field: str = "grid.spacing"
+) -> Raster:
     """Cells of side ``spacing`` whose centres lie in ``shape`` (see the module rule).
 
     Refuses a grid so coarse that fewer than ``min_incircle_cells`` cells span the incircle.
@@ -60,7 +62,8 @@ def rasterise(shape: Shape, spacing: float, *, min_incircle_cells: float = MIN_I
         raise SceneError(
             field,
             f"too coarse for the face: {2 * r_in / spacing:.3g} cells across its incircle "
-            f"(diameter {2 * r_in:g}); need >= {min_incircle_cells:g}, i.e. spacing <= {2 * r_in / min_incircle_cells:g}",
+            f"(diameter {2 * r_in:g}); need >= {min_incircle_cells:g}, "
+            f"i.e. spacing <= {2 * r_in / min_incircle_cells:g}",
         )
     cx, cy = shape.centroid
     xmin, ymin, xmax, ymax = shape.bounds
@@ -85,8 +88,9 @@ def rasterise(shape: Shape, spacing: float, *, min_incircle_cells: float = MIN_I
     return Raster(np.ascontiguousarray(mask[sx, sy]), float(spacing), (float(x[sx.start]), float(y[sy.start])))
 
 
-def rasterise_periodic(shape: Shape, spacing: float, period: float, *,
-                       min_incircle_cells: float = MIN_INCIRCLE_CELLS) -> Raster:
+def rasterise_periodic(
+    shape: Shape, spacing: float, period: float, *, min_incircle_cells: float = MIN_INCIRCLE_CELLS
+) -> Raster:
     """The face in one periodic cell: a (period / spacing)^2 grid centred on the face's
     centroid, with the same cells (same anchor rule) as :func:`rasterise` gives.
 
@@ -107,11 +111,14 @@ def rasterise_periodic(shape: Shape, spacing: float, period: float, *,
     iy = np.flatnonzero(inner.mask.any(axis=0))
     if ox + ix[0] < 1 or ox + ix[-1] > n - 2 or oy + iy[0] < 1 or oy + iy[-1] > n - 2:
         xmin, ymin, xmax, ymax = shape.bounds
-        raise SceneError("grid.period", f"the face ({xmax - xmin:g} x {ymax - ymin:g}) does not fit in the periodic "
-                         f"cell of side {period:g} with a gap of one element to its copies; enlarge the period")
+        raise SceneError(
+            "grid.period",
+            f"the face ({xmax - xmin:g} x {ymax - ymin:g}) does not fit in the periodic "
+            f"cell of side {period:g} with a gap of one element to its copies; enlarge the period",
+        )
     mask = np.zeros((n, n), bool)
     sx = slice(max(ox, 0), min(ox + mx, n))
     sy = slice(max(oy, 0), min(oy + my, n))
-    mask[sx, sy] = inner.mask[sx.start - ox:sx.stop - ox, sy.start - oy:sy.stop - oy]
+    mask[sx, sy] = inner.mask[sx.start - ox : sx.stop - ox, sy.start - oy : sy.stop - oy]
     origin = (cx + (i0 + 0.5) * spacing, cy + (i0 + 0.5) * spacing)
     return Raster(mask, float(spacing), origin)

@@ -1,4 +1,5 @@
 """The result type shared by every method."""
+
 from __future__ import annotations
 
 import dataclasses
@@ -15,8 +16,16 @@ __all__ = ["Curve", "Snapshot", "Result", "SolverStats", "ErrorBar", "QUANTITIES
 QUANTITIES = ("pulloff_force", "pulloff_approach", "stiffness")
 
 #: the keys every method fills in ``crossval solve --json``
-JSON_KEYS = ("method", "pulloff_force", "pulloff_approach", "stiffness", "converged",
-             "wall_time_s", "grid_spacing", "curve")
+JSON_KEYS = (
+    "method",
+    "pulloff_force",
+    "pulloff_approach",
+    "stiffness",
+    "converged",
+    "wall_time_s",
+    "grid_spacing",
+    "curve",
+)
 
 
 @dataclass(frozen=True, eq=False)
@@ -47,7 +56,7 @@ class Snapshot:
 
     approach: float
     force: float
-    contact: np.ndarray              # bool mask on the method's grid, [ix, iy]
+    contact: np.ndarray  # bool mask on the method's grid, [ix, iy]
     spacing: float
     origin: tuple[float, float]
     pressure: np.ndarray | None = None
@@ -60,8 +69,9 @@ class Snapshot:
     def centres(self) -> tuple[np.ndarray, np.ndarray]:
         """Cell-centre coordinates X, Y on the snapshot's grid, indexed like ``contact``."""
         nx, ny = self.contact.shape
-        return np.meshgrid(self.origin[0] + self.spacing * np.arange(nx),
-                           self.origin[1] + self.spacing * np.arange(ny), indexing="ij")
+        return np.meshgrid(
+            self.origin[0] + self.spacing * np.arange(nx), self.origin[1] + self.spacing * np.arange(ny), indexing="ij"
+        )
 
 
 @dataclass(frozen=True)
@@ -136,13 +146,13 @@ class Result:
     """
 
     method: str
-    pulloff_force: float                 # magnitude of the largest tensile force
-    pulloff_approach: float              # approach at that force
-    stiffness: float                     # initial dF/dd of the pressed contact
+    pulloff_force: float  # magnitude of the largest tensile force
+    pulloff_approach: float  # approach at that force
+    stiffness: float  # initial dF/dd of the pressed contact
     converged: bool
-    grid_spacing: float                  # element side, or characteristic mesh size
+    grid_spacing: float  # element side, or characteristic mesh size
     curve: Curve | None = None
-    detached: bool = True                # contact lost within the loading range
+    detached: bool = True  # contact lost within the loading range
     detachment_approach: float | None = None
     snapshots: tuple[Snapshot, ...] = ()
     last_stable: Snapshot | None = None
@@ -154,18 +164,22 @@ class Result:
     # a Mapping, so that each method's TypedDict of diagnostics (GriffithInfo, EnergyInfo...) fits
     info: Mapping[str, Any] = field(default_factory=dict)
     stats: SolverStats = field(default_factory=SolverStats)
-    error_bars: dict = field(default_factory=dict)       # quantity -> ErrorBar
+    error_bars: dict = field(default_factory=dict)  # quantity -> ErrorBar
     face_area: float | None = None
     discretisation: str = "grid"
 
     def __post_init__(self):
         if self.discretisation not in ("grid", "mesh", "extrapolated"):
-            raise ValueError(f"Result.discretisation must be 'grid', 'mesh' or 'extrapolated' (got {self.discretisation!r})")
+            raise ValueError(
+                f"Result.discretisation must be 'grid', 'mesh' or 'extrapolated' (got {self.discretisation!r})"
+            )
         for q, bar in self.error_bars.items():
             if q not in QUANTITIES or not isinstance(bar, ErrorBar):
                 raise ValueError(f"Result.error_bars maps {', '.join(QUANTITIES)} to ErrorBar (got {q!r}: {bar!r})")
         if self.face_area is not None and not (math.isfinite(self.face_area) and self.face_area > 0):
-            raise FloatingPointError(f"{self.method}: face_area is not a positive number ({self.face_area}); this is a solver bug")
+            raise FloatingPointError(
+                f"{self.method}: face_area is not a positive number ({self.face_area}); this is a solver bug"
+            )
         for name in ("pulloff_force", "pulloff_approach", "stiffness", "grid_spacing", "residual"):
             v = getattr(self, name)
             if not math.isfinite(v):
@@ -189,7 +203,9 @@ class Result:
             "converged": bool(self.converged),
             "wall_time_s": self.wall_time_s,
             "grid_spacing": self.grid_spacing,
-            "curve": None if self.curve is None else {
+            "curve": None
+            if self.curve is None
+            else {
                 "approach": self.curve.approach.tolist(),
                 "force": self.curve.force.tolist(),
                 "contact_area": self.curve.contact_area.tolist(),

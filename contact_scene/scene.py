@@ -4,6 +4,7 @@ A scene is physics only; how finely a method discretises it is a separate settin
 (:mod:`contact_scene.discretisation`).  Every part is a frozen dataclass that validates
 itself; make variants with :func:`dataclasses.replace`.
 """
+
 from __future__ import annotations
 
 import math
@@ -34,7 +35,9 @@ class Indenter:
             ax, ay = self.profile.apex
             rmax = max(math.hypot(x - ax, y - ay) for x in (x0, x1) for y in (y0, y1))
             if rmax >= self.profile.radius:
-                raise SceneError("indenter.profile_radius", f"the face reaches r = {rmax:g}; a sphere needs radius > that")
+                raise SceneError(
+                    "indenter.profile_radius", f"the face reaches r = {rmax:g}; a sphere needs radius > that"
+                )
 
     @property
     def is_circular_flat(self) -> bool:
@@ -54,7 +57,9 @@ class Adhesion:
     potential: str = "exponential"
 
     def __post_init__(self):
-        object.__setattr__(self, "work_of_adhesion", check_real("adhesion.work_of_adhesion", self.work_of_adhesion, lo=0))
+        object.__setattr__(
+            self, "work_of_adhesion", check_real("adhesion.work_of_adhesion", self.work_of_adhesion, lo=0)
+        )
         if self.range is not None:
             object.__setattr__(self, "range", check_real("adhesion.range", self.range, lo=0, lo_open=True))
         check_choice("adhesion.potential", self.potential, {"exponential", "maugis_dugdale"})
@@ -83,7 +88,9 @@ class Loading:
         turning_points = tuple(check_real("loading.turning_points", t) for t in self.turning_points)
         object.__setattr__(self, "turning_points", turning_points)
         if self.pull_limit is not None:
-            object.__setattr__(self, "pull_limit", check_real("loading.pull_limit", self.pull_limit, hi=0, hi_open=True))
+            object.__setattr__(
+                self, "pull_limit", check_real("loading.pull_limit", self.pull_limit, hi=0, hi_open=True)
+            )
 
 
 @dataclass(frozen=True)
@@ -118,10 +125,20 @@ class Scene:
             raise SceneError("material", f"must be Homogeneous or PowerLawGraded (got {type(self.material).__name__})")
         if not isinstance(self.adhesion, Adhesion):
             raise SceneError("adhesion", "must be an Adhesion")
-        if not self.indenter.profile.is_flat and self.loading.press_approach is None and self.loading.press_force is None:
+        if (
+            not self.indenter.profile.is_flat
+            and self.loading.press_approach is None
+            and self.loading.press_force is None
+        ):
             raise SceneError("loading.press_approach", "a curved profile needs press_approach > 0 or press_force > 0")
-        if not self.indenter.profile.is_flat and self.loading.press_approach is not None and self.loading.press_approach <= 0:
-            raise SceneError("loading.press_approach", f"must be > 0 for a curved profile (got {self.loading.press_approach:g})")
+        if (
+            not self.indenter.profile.is_flat
+            and self.loading.press_approach is not None
+            and self.loading.press_approach <= 0
+        ):
+            raise SceneError(
+                "loading.press_approach", f"must be > 0 for a curved profile (got {self.loading.press_approach:g})"
+            )
 
     @property
     def effective_modulus(self) -> float:

@@ -5,6 +5,7 @@ follow the sheet: an approach d < 0 means the punch is pulled; a force F < 0 is 
 "adhesion force" F_A is the magnitude of the largest tensile force.  ``E_star`` is
 E / (1 - nu^2) of a homogeneous half-space; graded functions take E0, c0 and k.
 """
+
 from __future__ import annotations
 
 import math
@@ -14,23 +15,51 @@ import numpy as np
 from scipy import integrate, optimize, special
 
 __all__ = [
-    "ELEMENT_ENERGY_CONSTANT", "SQUARE_BETA",
-    "kendall_stiffness", "kendall_energy", "critical_radius", "kendall_critical_approach",
-    "kendall_detachment_force", "kendall_adhesion_force", "kendall_energies_at_detachment",
-    "flat_circle_energy_release_rate", "compact_shape_stiffness", "upper_bound_force",
-    "upper_bound_approach", "holm_radius", "lower_bound_force", "lower_bound_approach",
-    "element_energy_constant", "critical_stress", "filling_equilibrium_approach",
-    "filling_adhesion_force", "filling_energy", "filling_is_stable", "filling_last_stable_radius",
-    "constant_force_filling", "graded_green_coefficient", "graded_stiffness", "graded_energy",
-    "graded_critical_approach", "graded_psi", "graded_adhesion_force", "force_at_nominal_area", "graded_two_square_integral",
-    "graded_criterion_constant", "graded_critical_stress", "elliptical_punch_stiffness",
-    "jkr_pulloff_force", "jkr_force", "jkr_approach",
+    "ELEMENT_ENERGY_CONSTANT",
+    "SQUARE_BETA",
+    "kendall_stiffness",
+    "kendall_energy",
+    "critical_radius",
+    "kendall_critical_approach",
+    "kendall_detachment_force",
+    "kendall_adhesion_force",
+    "kendall_energies_at_detachment",
+    "flat_circle_energy_release_rate",
+    "compact_shape_stiffness",
+    "upper_bound_force",
+    "upper_bound_approach",
+    "holm_radius",
+    "lower_bound_force",
+    "lower_bound_approach",
+    "element_energy_constant",
+    "critical_stress",
+    "filling_equilibrium_approach",
+    "filling_adhesion_force",
+    "filling_energy",
+    "filling_is_stable",
+    "filling_last_stable_radius",
+    "constant_force_filling",
+    "graded_green_coefficient",
+    "graded_stiffness",
+    "graded_energy",
+    "graded_critical_approach",
+    "graded_psi",
+    "graded_adhesion_force",
+    "force_at_nominal_area",
+    "graded_two_square_integral",
+    "graded_criterion_constant",
+    "graded_critical_stress",
+    "elliptical_punch_stiffness",
+    "jkr_pulloff_force",
+    "jkr_force",
+    "jkr_approach",
 ]
 
 
 # ---------------------------------------------------------------------------
 # Section 1: circular flat punch on a homogeneous half-space (Kendall)
 # ---------------------------------------------------------------------------
+
 
 def kendall_stiffness(*, E_star: float, radius: float) -> float:
     """Eq. 1: K = 2 E* a."""
@@ -114,6 +143,7 @@ def lower_bound_approach(*, E_star: float, work: float, incircle_radius: float) 
 # Section 3: the local detachment criterion of the BEM
 # ---------------------------------------------------------------------------
 
+
 def element_energy_constant() -> float:
     """Eq. 20: (2/pi) [ln(1 + sqrt 2) - (sqrt 2 - 1)/3] = 0.4732010044..., the energy released
     (in units of sigma^2 Delta^3 / E*) when a uniformly loaded square element is unloaded."""
@@ -131,6 +161,7 @@ def critical_stress(*, E_star: float, work: float, spacing: float) -> float:
 # ---------------------------------------------------------------------------
 # Section 4: filling factor phi(r)
 # ---------------------------------------------------------------------------
+
 
 def filling_energy(*, E_star: float, work: float, radius: float, approach: float, filling) -> float:
     """Eq. 25: U = E* a d^2 - 2 pi w int_0^a phi(r) r dr (``filling`` is the callable phi)."""
@@ -161,15 +192,18 @@ def filling_is_stable(*, radius: float, filling, step: float | None = None) -> b
 
 def filling_last_stable_radius(*, filling, radius_min: float, radius_max: float) -> float:
     """Eq. 31: the radius where d(a phi(a))/da = 0, bracketed in [radius_min, radius_max]."""
+
     def stability_slope(a):
         h = 1e-7 * a
         return ((a + h) * filling(a + h) - (a - h) * filling(a - h)) / (2 * h)
+
     return optimize.brentq(stability_slope, radius_min, radius_max, xtol=1e-14 * radius_max)
 
 
 # ---------------------------------------------------------------------------
 # Section 5: power-law graded half-space
 # ---------------------------------------------------------------------------
+
 
 def graded_green_coefficient(*, E0: float, c0: float, k: float) -> float:
     """Surface Green's function w(r) = A_k P / r^(1+k): A_k = (3+k) c0^k / (2 pi (1+k)(2+k) E0)."""
@@ -183,14 +217,22 @@ def graded_stiffness(*, E0: float, c0: float, k: float, radius: float) -> float:
 
 def graded_energy(*, E0: float, c0: float, k: float, radius: float, approach: float, work: float) -> float:
     """Eq. 35: U = 2 (2+k) cos(k pi/2)/(3+k) * E0 a^(1+k) d^2 / c0^k - pi a^2 w."""
-    return (2.0 * (2.0 + k) * math.cos(k * math.pi / 2) / (3.0 + k) * E0 * radius ** (1.0 + k) * approach**2 / c0**k
-            - math.pi * radius**2 * work)
+    return (
+        2.0 * (2.0 + k) * math.cos(k * math.pi / 2) / (3.0 + k) * E0 * radius ** (1.0 + k) * approach**2 / c0**k
+        - math.pi * radius**2 * work
+    )
 
 
 def graded_critical_approach(*, E0: float, c0: float, k: float, radius: float, work: float) -> float:
     """Eq. 38 (from Eqs. 36-37): d_c = -[pi w (3+k) c0^k a^(1-k) / ((2+k)(1+k) cos(k pi/2) E0)]^(1/2)."""
-    return -math.sqrt(math.pi * work * (3.0 + k) * c0**k * radius ** (1.0 - k)
-                      / ((2.0 + k) * (1.0 + k) * math.cos(k * math.pi / 2) * E0))
+    return -math.sqrt(
+        math.pi
+        * work
+        * (3.0 + k)
+        * c0**k
+        * radius ** (1.0 - k)
+        / ((2.0 + k) * (1.0 + k) * math.cos(k * math.pi / 2) * E0)
+    )
 
 
 def graded_psi(k: float) -> float:
@@ -198,8 +240,9 @@ def graded_psi(k: float) -> float:
     return 2.0 * (2.0 + k) * math.cos(k * math.pi / 2) / ((3.0 + k) * (1.0 + k))
 
 
-def graded_adhesion_force(*, E0: float, c0: float, k: float, radius: float, work: float,
-                          filling_factor: float = 1.0) -> float:
+def graded_adhesion_force(
+    *, E0: float, c0: float, k: float, radius: float, work: float, filling_factor: float = 1.0
+) -> float:
     """Eq. 39 (Eq. 41 with filling factor): F_A = sqrt(8 pi psi(k) E0 phi w a^(3+k) / c0^k)."""
     return math.sqrt(8.0 * math.pi * graded_psi(k) * E0 * filling_factor * work * radius ** (3.0 + k) / c0**k)
 
@@ -245,6 +288,7 @@ def graded_critical_stress(*, E0: float, c0: float, k: float, work: float, spaci
 # ---------------------------------------------------------------------------
 # ellipse and sphere
 # ---------------------------------------------------------------------------
+
 
 def elliptical_punch_stiffness(*, E_star: float, semi_major: float, semi_minor: float) -> float:
     """Galin: F = pi E* a d / K(e), e^2 = 1 - b^2/a^2, K the complete elliptic integral of

@@ -1,4 +1,5 @@
 """Cross-validation harness: run scenes through the methods and check them against theory."""
+
 from .compare import Check, Comparison, compare
 from .methods import METHODS, applicable_methods, get_method
 from .reference import Reference, assert_matches_reference, reference
@@ -8,5 +9,18 @@ from .study import study
 from .suite import SUITE
 
 # the functions, not their modules, are the library API (modules stay importable as crossval.report etc.)
-__all__ = ["METHODS", "applicable_methods", "get_method", "compare", "Check", "Comparison", "reference",
-           "Reference", "assert_matches_reference", "SUITE", "study", "report", "regress"]
+__all__ = [
+    "METHODS",
+    "applicable_methods",
+    "get_method",
+    "compare",
+    "Check",
+    "Comparison",
+    "reference",
+    "Reference",
+    "assert_matches_reference",
+    "SUITE",
+    "study",
+    "report",
+    "regress",
+]

@@ -10,6 +10,7 @@ Writes are atomic (a temporary file renamed into place), so an interrupted run l
 the old entry or none, never half a file, and two runs sharing a directory each read whole
 entries (both compute the same deterministic result; the last rename wins).
 """
+
 from __future__ import annotations
 
 import dataclasses
@@ -54,8 +55,10 @@ def encode_result(result: Result) -> tuple[str, dict[str, np.ndarray]]:
             arrays[name] = obj
             return {"__array__": name}
         if dataclasses.is_dataclass(obj) and type(obj).__name__ in _TYPES:
-            return {"__type__": type(obj).__name__,
-                    **{f.name: enc(getattr(obj, f.name)) for f in dataclasses.fields(obj)}}
+            return {
+                "__type__": type(obj).__name__,
+                **{f.name: enc(getattr(obj, f.name)) for f in dataclasses.fields(obj)},
+            }
         if isinstance(obj, dict):
             if not all(isinstance(k, str) and not k.startswith("__") for k in obj):
                 raise TypeError(f"cannot cache a dict with keys {list(obj)!r}")
@@ -137,8 +140,9 @@ class ResultCache:
                     raise ValueError(f"entry of format {meta.get('format')!r} for key {meta.get('key')!r}")
                 result = decode_result(meta["result"], z)
         except (OSError, ValueError, KeyError, TypeError, EOFError, zipfile.BadZipFile, UnicodeDecodeError) as exc:
-            log.warning("crossval cache: ignoring unreadable entry %s (%s: %s); recomputing",
-                        path.name, type(exc).__name__, exc)
+            log.warning(
+                "crossval cache: ignoring unreadable entry %s (%s: %s); recomputing", path.name, type(exc).__name__, exc
+            )
             return None
         self._memory[key] = result
         return result

@@ -1,4 +1,5 @@
 """The ``crossval`` command line.  Only this module prints."""
+
 from __future__ import annotations
 
 import dataclasses
@@ -20,6 +21,7 @@ log = logging.getLogger("crossval")
 
 def _scene_errors_exit_2(f):
     """A bad scene or option is the user's to fix: one clear line on stderr, exit status 2."""
+
     @wraps(f)
     def wrapper(*args, **kwargs):
         try:
@@ -27,6 +29,7 @@ def _scene_errors_exit_2(f):
         except SceneError as exc:
             click.echo(f"error: {exc}", err=True)
             sys.exit(2)
+
     return wrapper
 
 
@@ -66,8 +69,9 @@ class _LiveStatus:
                 def emit(self, record):
                     try:
                         live.bar.set_description(f"{live.desc}: {record.getMessage()[:70]}", refresh=True)
-                    except Exception:   # a malformed record must not disturb the solve it reports on
+                    except Exception:  # a malformed record must not disturb the solve it reports on
                         pass
+
             self._handler = Stage(logging.INFO)
             for name in _SOLVER_LOGGERS:
                 lg = logging.getLogger(name)
@@ -79,7 +83,7 @@ class _LiveStatus:
         filters = [f for h in root.handlers for f in h.filters]
         self._redirect = logging_redirect_tqdm()
         self._redirect.__enter__()
-        for h in root.handlers:             # tqdm's replacement handler keeps neither level nor filters
+        for h in root.handlers:  # tqdm's replacement handler keeps neither level nor filters
             h.setLevel(max(levels, default=logging.WARNING))
             for f in filters:
                 h.addFilter(f)
@@ -106,10 +110,12 @@ class _LiveStatus:
 def _version() -> str:
     from .cache import package_version
 
-    return (f"adhesive-punch {package_version()}\n"
-            "Cite the package (CITATION.cff) and the method's source: V.L. Popov, R. Pohrt, Q. Li, "
-            "Strength of adhesive contacts: influence of contact geometry and material gradients, "
-            "Friction 5(3):308-325 (2017).")
+    return (
+        f"adhesive-punch {package_version()}\n"
+        "Cite the package (CITATION.cff) and the method's source: V.L. Popov, R. Pohrt, Q. Li, "
+        "Strength of adhesive contacts: influence of contact geometry and material gradients, "
+        "Friction 5(3):308-325 (2017)."
+    )
 
 
 def _print_version(ctx, param, value):
@@ -120,8 +126,14 @@ def _print_version(ctx, param, value):
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
 @click.option("-v", "--verbose", count=True, help="More log output on stderr (-v: progress and stages, -vv: debug).")
-@click.option("--version", is_flag=True, expose_value=False, is_eager=True, callback=_print_version,
-              help="Print the package version and how to cite it, then exit.")
+@click.option(
+    "--version",
+    is_flag=True,
+    expose_value=False,
+    is_eager=True,
+    callback=_print_version,
+    help="Print the package version and how to cite it, then exit.",
+)
 def main(verbose):
     """Adhesive punch detachment: solve scenes and cross-check methods against theory.
 
@@ -172,15 +184,24 @@ def scene_check(file, as_json):
 @main.command("solve")
 @click.argument("file", type=click.Path(dir_okay=False))
 @click.option("--method", "method_name", required=True, type=click.Choice(sorted(METHODS)), help="Which solver.")
-@click.option("--resolution", type=float, default=None,
-              help="bem_griffith, and bem_energy at a finite range: elements across the equivalent radius "
-                   "sqrt(A/pi) (bem_energy's default resolves the process zone: 2 elements per l_c with the "
-                   "exponential potential); bem_energy in the zero-range limit: elements per process zone; "
-                   "fem_reference: 1/grading. Default: the method's own.")
-@click.option("--range", "range_", type=float, default=None,
-              help="Interaction range rho of the adhesive potential (bem_energy only): run this finite range "
-                   "instead of the zero-range limit. Its process zone l_c = E* rho^2 / w is resolved by default; "
-                   "a range whose grid would exceed 1024 cells across is refused, naming the shortest that fits.")
+@click.option(
+    "--resolution",
+    type=float,
+    default=None,
+    help="bem_griffith, and bem_energy at a finite range: elements across the equivalent radius "
+    "sqrt(A/pi) (bem_energy's default resolves the process zone: 2 elements per l_c with the "
+    "exponential potential); bem_energy in the zero-range limit: elements per process zone; "
+    "fem_reference: 1/grading. Default: the method's own.",
+)
+@click.option(
+    "--range",
+    "range_",
+    type=float,
+    default=None,
+    help="Interaction range rho of the adhesive potential (bem_energy only): run this finite range "
+    "instead of the zero-range limit. Its process zone l_c = E* rho^2 / w is resolved by default; "
+    "a range whose grid would exceed 1024 cells across is refused, naming the shortest that fits.",
+)
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON (fixed keys for every method).")
 @_scene_errors_exit_2
 def solve_cmd(file, method_name, resolution, range_, as_json):
@@ -190,8 +211,11 @@ def solve_cmd(file, method_name, resolution, range_, as_json):
     if range_ is not None:
         if not method.uses_range:
             users = ", ".join(m.name for m in METHODS.values() if m.uses_range)
-            raise SceneError("--range", f"{method.name} is a zero-range (Griffith) method and has no interaction "
-                             f"range; drop --range, or use --method {users}")
+            raise SceneError(
+                "--range",
+                f"{method.name} is a zero-range (Griffith) method and has no interaction "
+                f"range; drop --range, or use --method {users}",
+            )
         sc = dataclasses.replace(sc, adhesion=dataclasses.replace(sc.adhesion, range=range_))
     why_not = method.applies(sc)
     if why_not:
@@ -203,9 +227,15 @@ def solve_cmd(file, method_name, resolution, range_, as_json):
         click.echo(json_dumps(res.to_json()))
         return
     rows = [
-        ("method", res.method), ("pulloff_force", res.pulloff_force), ("pulloff_approach", res.pulloff_approach),
-        ("stiffness", res.stiffness), ("detached", res.detached), ("converged", res.converged),
-        ("iterations", res.iterations), ("grid_spacing", res.grid_spacing), ("wall_time_s", res.wall_time_s),
+        ("method", res.method),
+        ("pulloff_force", res.pulloff_force),
+        ("pulloff_approach", res.pulloff_approach),
+        ("stiffness", res.stiffness),
+        ("detached", res.detached),
+        ("converged", res.converged),
+        ("iterations", res.iterations),
+        ("grid_spacing", res.grid_spacing),
+        ("wall_time_s", res.wall_time_s),
     ]
     for k, v in rows:
         click.echo(f"{k:<18}{_fmt(v)}")
@@ -216,8 +246,12 @@ def solve_cmd(file, method_name, resolution, range_, as_json):
 @main.command("compare")
 @click.argument("file", type=click.Path(dir_okay=False))
 @click.option("--resolution", type=float, default=None, help="BEM elements across sqrt(A/pi) (default 32).")
-@click.option("--quick", is_flag=True, help="The energy method's coarse zero-range sequence (seconds, with an error "
-              "bar of about 8 %) instead of its accurate default (minutes, about 1-4 %).")
+@click.option(
+    "--quick",
+    is_flag=True,
+    help="The energy method's coarse zero-range sequence (seconds, with an error "
+    "bar of about 8 %) instead of its accurate default (minutes, about 1-4 %).",
+)
 @click.option("--json", "as_json", is_flag=True, help="Print the comparison as JSON.")
 @_scene_errors_exit_2
 def compare_cmd(file, resolution, quick, as_json):
@@ -231,25 +265,57 @@ def compare_cmd(file, resolution, quick, as_json):
         if m.resolution_is_grid(sc):
             m.check_resolution(sc, resolution, field="--resolution")
     with _LiveStatus(f"compare {sc.name or file}") as live:
-        cmp = compare(sc, resolution=resolution, resolutions=_compare_quick(sc) if quick else None,
-                      point_callback=live.point)
+        cmp = compare(
+            sc, resolution=resolution, resolutions=_compare_quick(sc) if quick else None, point_callback=live.point
+        )
     if as_json:
-        click.echo(json_dumps({
-            "scene": sc.name, "passed": cmp.passed, "theory": cmp.theory, "skipped": cmp.skipped,
-            "results": {k: {q: getattr(r, q) for q in ("pulloff_force", "pulloff_approach", "stiffness", "converged",
-                                                        "wall_time_s", "grid_spacing")}
-                        for k, r in cmp.results.items()},
-            "checks": [{"method": c.method, "quantity": c.quantity, "value": c.value, "reference": c.reference,
-                        "reference_name": c.reference_name, "difference": c.difference, "tolerance": c.tolerance,
-                        "passed": c.passed, "role": c.role} for c in cmp.checks],
-        }))
+        click.echo(
+            json_dumps(
+                {
+                    "scene": sc.name,
+                    "passed": cmp.passed,
+                    "theory": cmp.theory,
+                    "skipped": cmp.skipped,
+                    "results": {
+                        k: {
+                            q: getattr(r, q)
+                            for q in (
+                                "pulloff_force",
+                                "pulloff_approach",
+                                "stiffness",
+                                "converged",
+                                "wall_time_s",
+                                "grid_spacing",
+                            )
+                        }
+                        for k, r in cmp.results.items()
+                    },
+                    "checks": [
+                        {
+                            "method": c.method,
+                            "quantity": c.quantity,
+                            "value": c.value,
+                            "reference": c.reference,
+                            "reference_name": c.reference_name,
+                            "difference": c.difference,
+                            "tolerance": c.tolerance,
+                            "passed": c.passed,
+                            "role": c.role,
+                        }
+                        for c in cmp.checks
+                    ],
+                }
+            )
+        )
     else:
         click.echo(f"scene: {sc.name}")
         hdr = f"{'method':<16}{'F_A':>12}{'d at F_A':>12}{'stiffness':>12}{'wall s':>9}  converged"
         click.echo(hdr)
         for k, r in cmp.results.items():
-            click.echo(f"{k:<16}{r.pulloff_force:>12.6g}{r.pulloff_approach:>12.6g}{r.stiffness:>12.6g}"
-                       f"{r.wall_time_s:>9.2f}  {r.converged}")
+            click.echo(
+                f"{k:<16}{r.pulloff_force:>12.6g}{r.pulloff_approach:>12.6g}{r.stiffness:>12.6g}"
+                f"{r.wall_time_s:>9.2f}  {r.converged}"
+            )
         for k, v in cmp.theory.items():
             if k != "source":
                 click.echo(f"{'theory':<16}{k} = {v:.6g}  ({cmp.theory['source']})")
@@ -273,6 +339,7 @@ def _progress(total: int, desc: str):
     def cb(job, result):
         bar.update(1)
         bar.set_postfix_str(f"{job.scene.name}/{job.method}", refresh=False)
+
     return bar, cb
 
 
@@ -283,10 +350,17 @@ def _compare_quick(sc) -> dict:
 
 @main.command("report")
 @click.option("--quick", is_flag=True, help="Coarse resolutions: under 3 minutes on 2 cores.")
-@click.option("--out", "out_dir", default="report", show_default=True, type=click.Path(file_okay=False),
-              help="Directory for index.html, results.json and the PNGs.")
-@click.option("--workers", type=click.IntRange(min=1), default=None,
-              help="Local processes (default: the machine's cores).")
+@click.option(
+    "--out",
+    "out_dir",
+    default="report",
+    show_default=True,
+    type=click.Path(file_okay=False),
+    help="Directory for index.html, results.json and the PNGs.",
+)
+@click.option(
+    "--workers", type=click.IntRange(min=1), default=None, help="Local processes (default: the machine's cores)."
+)
 @click.option("--scheduler", default=None, help="dask.distributed scheduler address (instead of local processes).")
 @click.option("--no-cache", is_flag=True, help="Recompute everything (results are cached in .crossval-cache).")
 def report_cmd(quick, out_dir, workers, scheduler, no_cache):
@@ -302,14 +376,22 @@ def report_cmd(quick, out_dir, workers, scheduler, no_cache):
     total = sum(len(res[m.name]) for s in SUITE.values() for m in applicable_methods(s))
     bar, cb = _progress(total, "report")
     with bar, logging_redirect_tqdm():
-        rep = report(out_dir, quick=quick, workers=workers or default_workers(), scheduler=scheduler,
-                     cache_dir=None if no_cache else ".crossval-cache", callback=cb)
+        rep = report(
+            out_dir,
+            quick=quick,
+            workers=workers or default_workers(),
+            scheduler=scheduler,
+            cache_dir=None if no_cache else ".crossval-cache",
+            callback=cb,
+        )
     every = [(s, c) for s, cs_ in rep.checks.items() for c in cs_]
     failed = [(s, c) for s, c in every if not c.passed]
     residuals = sum(c.passed and c.role == "calibration" for _, c in every)
-    click.echo(f"wrote {rep.directory / 'index.html'} ({rep.wall_time_s:.0f} s); "
-               f"{len(every) - len(failed) - residuals} checks passed, {len(failed)} failed, "
-               f"{residuals} calibration residuals within their bounds")
+    click.echo(
+        f"wrote {rep.directory / 'index.html'} ({rep.wall_time_s:.0f} s); "
+        f"{len(every) - len(failed) - residuals} checks passed, {len(failed)} failed, "
+        f"{residuals} calibration residuals within their bounds"
+    )
     for s, c in failed:
         click.echo(f"FAIL {s}: {c.explain()}")
     if failed:
@@ -337,14 +419,28 @@ def regress_cmd(update, workers):
 
 @main.command("study")
 @click.argument("file", type=click.Path(dir_okay=False))
-@click.option("--method", "method_names", multiple=True, type=click.Choice(sorted(METHODS)),
-              help="Method(s) to study (default: every one that applies).")
+@click.option(
+    "--method",
+    "method_names",
+    multiple=True,
+    type=click.Choice(sorted(METHODS)),
+    help="Method(s) to study (default: every one that applies).",
+)
 @click.option("--resolutions", default=None, help="Comma-separated resolutions (default: each method's own set).")
-@click.option("--quantity", default="pulloff_force", show_default=True,
-              type=click.Choice(["pulloff_force", "pulloff_approach", "stiffness"]),
-              help="Which result to measure the error of.")
-@click.option("--workers", type=click.IntRange(min=1), default=1, show_default=True,
-              help="Local processes to spread the runs over.")
+@click.option(
+    "--quantity",
+    default="pulloff_force",
+    show_default=True,
+    type=click.Choice(["pulloff_force", "pulloff_approach", "stiffness"]),
+    help="Which result to measure the error of.",
+)
+@click.option(
+    "--workers",
+    type=click.IntRange(min=1),
+    default=1,
+    show_default=True,
+    help="Local processes to spread the runs over.",
+)
 @click.option("--json", "as_json", is_flag=True, help="Print the study as JSON.")
 @_scene_errors_exit_2
 def study_cmd(file, method_names, resolutions, quantity, workers, as_json):
@@ -375,13 +471,23 @@ def study_cmd(file, method_names, resolutions, quantity, workers, as_json):
     with bar, logging_redirect_tqdm():
         st = study(sc, methods=names, resolutions=res, quantity=quantity, workers=workers, callback=cb)
     if as_json:
-        click.echo(json_dumps({"scene": sc.name, "quantity": quantity, "reference": st.reference,
-                               "reference_name": st.reference_name, "rates": st.rates, "time_rates": st.time_rates,
-                               "reference_kind": st.reference_info.kind,
-                               "reference_uncertainty": st.reference_info.uncertainty,
-                               "convergence": {m: c.to_json() for m, c in st.convergence.items()},
-                               "time_convergence": {m: c.to_json() for m, c in st.time_convergence.items()},
-                               "rows": [r.__dict__ for r in st.rows]}))
+        click.echo(
+            json_dumps(
+                {
+                    "scene": sc.name,
+                    "quantity": quantity,
+                    "reference": st.reference,
+                    "reference_name": st.reference_name,
+                    "rates": st.rates,
+                    "time_rates": st.time_rates,
+                    "reference_kind": st.reference_info.kind,
+                    "reference_uncertainty": st.reference_info.uncertainty,
+                    "convergence": {m: c.to_json() for m, c in st.convergence.items()},
+                    "time_convergence": {m: c.to_json() for m, c in st.time_convergence.items()},
+                    "rows": [r.__dict__ for r in st.rows],
+                }
+            )
+        )
         return
     click.echo(f"{quantity} of {sc.name}: error against {st.reference_name} ({st.reference:.8g})")
     click.echo(f"{'method':<16}{'resolution':>11}{'value':>15}{'rel. error':>12}{'wall s':>9}")
@@ -389,8 +495,16 @@ def study_cmd(file, method_names, resolutions, quantity, workers, as_json):
         click.echo(f"{r.method:<16}{r.resolution:>11.4g}{r.value:>15.8g}{r.error:>12.3e}{r.wall_time_s:>9.2f}")
     for m, c in st.convergence.items():
         t = st.time_convergence[m]
-        click.echo(f"{m}: {c.text}" + (f"; error ~ time^-{t.order:.2f}" if t.kind == "order"
-                                       else f"; no exponent in time ({t.reason})" if c.kind == "order" else ""))
+        click.echo(
+            f"{m}: {c.text}"
+            + (
+                f"; error ~ time^-{t.order:.2f}"
+                if t.kind == "order"
+                else f"; no exponent in time ({t.reason})"
+                if c.kind == "order"
+                else ""
+            )
+        )
 
 
 if __name__ == "__main__":  # pragma: no cover

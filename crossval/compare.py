@@ -17,6 +17,7 @@ fitted by a convergence study that shows it covers the method's error; the bar n
 Faces without a closed form are checked between the bounds (Eqs. 13, 18; the lower bound less
 the method's bar) and across methods.
 """
+
 from __future__ import annotations
 
 import math
@@ -38,8 +39,8 @@ class Check:
     value: float
     reference: float
     reference_name: str
-    tolerance: float            # relative, or the allowed interval's slack for bounds
-    kind: str = "relative"      # "relative" | "bounds"
+    tolerance: float  # relative, or the allowed interval's slack for bounds
+    kind: str = "relative"  # "relative" | "bounds"
     upper: float | None = None  # for bounds
     #: "validation": an independent check; "calibration": a residual of a quantity the method
     #: was fitted to (it can fail, but its passing validates nothing)
@@ -73,17 +74,25 @@ class Check:
         if not self.converged and self.quantity == "converged":
             return f"{self.method}: did not converge ({self.basis or 'see the result messages'})"
         if not self.converged:
-            return (f"{self.method}: {self.quantity} = {self.value:.6g} comes from a result that did not converge, "
-                    "so it fails whatever its value")
+            return (
+                f"{self.method}: {self.quantity} = {self.value:.6g} comes from a result that did not converge, "
+                "so it fails whatever its value"
+            )
         if self.role == "calibration":
-            return (f"{self.method}: {self.quantity} = {self.value:.6g}, calibration residual against "
-                    f"{self.reference_name} {self.reference:.6g}: {self.difference:+.3%} (bound {self.tolerance:.3%}; "
-                    "matches by construction, not a validation)")
+            return (
+                f"{self.method}: {self.quantity} = {self.value:.6g}, calibration residual against "
+                f"{self.reference_name} {self.reference:.6g}: {self.difference:+.3%} (bound {self.tolerance:.3%}; "
+                "matches by construction, not a validation)"
+            )
         if self.kind == "bounds":
-            return (f"{self.method}: {self.quantity} = {self.value:.6g} should lie in [{self.reference:.6g} "
-                    f"(lower bound, slack {self.tolerance:.2%}), {self.upper:.6g}] ({self.reference_name})")
-        return (f"{self.method}: {self.quantity} = {self.value:.6g} differs from {self.reference_name} "
-                f"{self.reference:.6g} by {self.difference:+.3%} (tolerance {self.tolerance:.3%})")
+            return (
+                f"{self.method}: {self.quantity} = {self.value:.6g} should lie in [{self.reference:.6g} "
+                f"(lower bound, slack {self.tolerance:.2%}), {self.upper:.6g}] ({self.reference_name})"
+            )
+        return (
+            f"{self.method}: {self.quantity} = {self.value:.6g} differs from {self.reference_name} "
+            f"{self.reference:.6g} by {self.difference:+.3%} (tolerance {self.tolerance:.3%})"
+        )
 
 
 @dataclass(frozen=True, eq=False)
@@ -92,7 +101,7 @@ class Comparison:
     results: dict
     theory: dict
     checks: tuple[Check, ...] = ()
-    skipped: dict = field(default_factory=dict)   # method -> why it does not apply
+    skipped: dict = field(default_factory=dict)  # method -> why it does not apply
 
     @property
     def passed(self) -> bool:
@@ -107,22 +116,30 @@ def reference_values(scene: cs.Scene) -> dict:
     if isinstance(mat, cs.Homogeneous):
         E = mat.effective_modulus
         if prof.is_flat and isinstance(shape, cs.Circle):
-            out.update(pulloff_force=T.kendall_adhesion_force(E_star=E, radius=shape.radius, work=w),
-                       pulloff_approach=T.kendall_critical_approach(E_star=E, radius=shape.radius, work=w),
-                       stiffness=T.kendall_stiffness(E_star=E, radius=shape.radius), source="Kendall (Eqs. 1, 4, 6)")
+            out.update(
+                pulloff_force=T.kendall_adhesion_force(E_star=E, radius=shape.radius, work=w),
+                pulloff_approach=T.kendall_critical_approach(E_star=E, radius=shape.radius, work=w),
+                stiffness=T.kendall_stiffness(E_star=E, radius=shape.radius),
+                source="Kendall (Eqs. 1, 4, 6)",
+            )
         elif prof.is_flat:
-            out.update(upper_force=T.upper_bound_force(E_star=E, work=w, area=shape.nominal_area,
-                                                       filling_factor=shape.filling_factor),
-                       lower_force=T.lower_bound_force(E_star=E, work=w, incircle_radius=shape.incircle().radius),
-                       source="bounds (Eqs. 13, 18)")
+            out.update(
+                upper_force=T.upper_bound_force(
+                    E_star=E, work=w, area=shape.nominal_area, filling_factor=shape.filling_factor
+                ),
+                lower_force=T.lower_bound_force(E_star=E, work=w, incircle_radius=shape.incircle().radius),
+                source="bounds (Eqs. 13, 18)",
+            )
         elif isinstance(prof, (cs.Paraboloid, cs.Sphere)):
             out.update(pulloff_force=T.jkr_pulloff_force(work=w, sphere_radius=prof.radius), source="JKR 1.5 pi w R")
     elif isinstance(mat, cs.PowerLawGraded) and prof.is_flat and isinstance(shape, cs.Circle):
         E0, c0, k = mat.surface_modulus, mat.reference_depth, mat.exponent
-        out.update(pulloff_force=T.graded_adhesion_force(E0=E0, c0=c0, k=k, radius=shape.radius, work=w),
-                   pulloff_approach=T.graded_critical_approach(E0=E0, c0=c0, k=k, radius=shape.radius, work=w),
-                   stiffness=T.graded_stiffness(E0=E0, c0=c0, k=k, radius=shape.radius),
-                   source="graded (Eqs. 34, 38, 39)")
+        out.update(
+            pulloff_force=T.graded_adhesion_force(E0=E0, c0=c0, k=k, radius=shape.radius, work=w),
+            pulloff_approach=T.graded_critical_approach(E0=E0, c0=c0, k=k, radius=shape.radius, work=w),
+            stiffness=T.graded_stiffness(E0=E0, c0=c0, k=k, radius=shape.radius),
+            source="graded (Eqs. 34, 38, 39)",
+        )
     return out
 
 
@@ -142,8 +159,11 @@ SAME_GRID_STIFFNESS = 0.1
 def _same_grid(a: cs.Result, b: cs.Result) -> bool:
     """Two single-grid results on grids of one element size: the same staircase face, so the
     difference of their stiffnesses is the two kernels' discretisation only."""
-    return (a.discretisation == b.discretisation == "grid" and a.method != b.method
-            and math.isclose(a.grid_spacing, b.grid_spacing, rel_tol=1e-12))
+    return (
+        a.discretisation == b.discretisation == "grid"
+        and a.method != b.method
+        and math.isclose(a.grid_spacing, b.grid_spacing, rel_tol=1e-12)
+    )
 
 
 def check_results(scene: cs.Scene, results: dict) -> tuple[Check, ...]:
@@ -161,17 +181,41 @@ def check_results(scene: cs.Scene, results: dict) -> tuple[Check, ...]:
     for name, r in results.items():
         if not r.converged:
             # whatever bars it has, an unconverged result fails: never a check silently skipped
-            checks.append(Check(name, "converged", 0.0, 1.0, "convergence", 0.0, converged=False,
-                                basis="; ".join(r.messages)))
+            checks.append(
+                Check(name, "converged", 0.0, 1.0, "convergence", 0.0, converged=False, basis="; ".join(r.messages))
+            )
         for q in ("pulloff_force", "pulloff_approach", "stiffness"):
             bar = error_bar(r, q)
             if q in theory and bar is not None:
-                checks.append(Check(name, q, getattr(r, q), theory[q], src, bar.relative, role=bar.role,
-                                    converged=r.converged, basis=bar.source))
+                checks.append(
+                    Check(
+                        name,
+                        q,
+                        getattr(r, q),
+                        theory[q],
+                        src,
+                        bar.relative,
+                        role=bar.role,
+                        converged=r.converged,
+                        basis=bar.source,
+                    )
+                )
         bar = error_bar(r, "pulloff_force")
         if "upper_force" in theory and bar is not None:
-            checks.append(Check(name, "pulloff_force", r.pulloff_force, theory["lower_force"], src, bar.relative,
-                                kind="bounds", upper=theory["upper_force"], converged=r.converged, basis=bar.source))
+            checks.append(
+                Check(
+                    name,
+                    "pulloff_force",
+                    r.pulloff_force,
+                    theory["lower_force"],
+                    src,
+                    bar.relative,
+                    kind="bounds",
+                    upper=theory["upper_force"],
+                    converged=r.converged,
+                    basis=bar.source,
+                )
+            )
     names = list(results)
     for i in range(len(names)):
         for j in range(i + 1, len(names)):
@@ -187,13 +231,31 @@ def check_results(scene: cs.Scene, results: dict) -> tuple[Check, ...]:
                     N = scene.indenter.shape.equivalent_radius / a.grid_spacing
                     tol = min(tol, SAME_GRID_STIFFNESS / N)
                     basis = f"the kernels' same-grid difference {SAME_GRID_STIFFNESS:g}/N"
-                checks.append(Check(f"{names[i]} vs {names[j]}", q, getattr(a, q), getattr(b, q),
-                                    names[j], tol, role=role, converged=a.converged and b.converged, basis=basis))
+                checks.append(
+                    Check(
+                        f"{names[i]} vs {names[j]}",
+                        q,
+                        getattr(a, q),
+                        getattr(b, q),
+                        names[j],
+                        tol,
+                        role=role,
+                        converged=a.converged and b.converged,
+                        basis=basis,
+                    )
+                )
     return tuple(checks)
 
 
-def compare(scene: cs.Scene, *, methods=None, resolution: float | None = None, resolutions: dict | None = None,
-            callback=None, point_callback=None) -> Comparison:
+def compare(
+    scene: cs.Scene,
+    *,
+    methods=None,
+    resolution: float | None = None,
+    resolutions: dict | None = None,
+    callback=None,
+    point_callback=None,
+) -> Comparison:
     """Solve ``scene`` with every applicable method (or those named) and check the results.
 
     ``resolution`` is the grid methods' elements per radius; the others run their defaults
@@ -206,8 +268,9 @@ def compare(scene: cs.Scene, *, methods=None, resolution: float | None = None, r
     own = dict(resolutions or {})
     unknown = set(own) - set(METHODS)
     if unknown:
-        raise cs.SceneError("resolutions",
-                            f"unknown method(s) {', '.join(sorted(unknown))}; available: {', '.join(METHODS)}")
+        raise cs.SceneError(
+            "resolutions", f"unknown method(s) {', '.join(sorted(unknown))}; available: {', '.join(METHODS)}"
+        )
     results = {}
     for m in chosen:
         res = own[m.name] if m.name in own else (resolution if m.resolution_is_grid(scene) else None)

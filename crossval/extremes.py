@@ -1,6 +1,7 @@
 """The stiff and extreme cases as a table: converged or not, stiffness error against theory,
 iterations, time, the last message.  Printed by ``benchmarks/bench_extreme.py`` and included
 in the full report."""
+
 from __future__ import annotations
 
 import time
@@ -45,9 +46,11 @@ def extreme_cases(*, callback=None) -> list[tuple]:
     for nu in (0.49, 0.499, 0.4999, 0.5):
         m = cs.Homogeneous(1.0, nu)
         K = T.kendall_stiffness(E_star=m.effective_modulus, radius=1.0)
-        for name, fn in (("bem_griffith", lambda s: bg.solve(s, griffith32)),
-                         ("bem_energy", lambda s: be.solve(s)),
-                         ("fem_reference", lambda s: fr.solve(s, fr.FemSettings(grading=2.0)))):
+        for name, fn in (
+            ("bem_griffith", lambda s: bg.solve(s, griffith32)),
+            ("bem_energy", lambda s: be.solve(s)),
+            ("fem_reference", lambda s: fr.solve(s, fr.FemSettings(grading=2.0))),
+        ):
             r, dt = _timed(fn, circle(m))
             add(_row(f"nu = {nu}", name, r, K, dt))
     for k in (0.9, 0.95, -0.9, -0.95):
@@ -72,7 +75,7 @@ def extreme_cases(*, callback=None) -> list[tuple]:
         r, dt = _timed(bg.solve, sc, bg.GriffithSettings(grid=cs.Grid(spacing=1 / 8)))
         add(_row(f"rectangle {ar}:1", "bem_griffith", r, None, dt))
         if ar <= 20:
-            sc = cs.Scene(cs.Indenter(cs.Rectangle(float(ar), 1.0)), E, cs.Adhesion(1.0, 0.16 ** 0.5))
+            sc = cs.Scene(cs.Indenter(cs.Rectangle(float(ar), 1.0)), E, cs.Adhesion(1.0, 0.16**0.5))
             r, dt = _timed(be.solve, sc, be.EnergySettings(grid=cs.Grid(spacing=1 / 8)))
             add(_row(f"rectangle {ar}:1, l_c = 0.16 b", "bem_energy", r, None, dt))
     return rows

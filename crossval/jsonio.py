@@ -4,6 +4,7 @@ Python's ``json`` writes NaN and Infinity as bare tokens, which RFC 8259 parsers
 ``JSON.parse``, jq, Go, Rust's serde) refuse.  A quantity that is not a finite number (a rate
 that could not be fitted, an error with no reference) is written as ``null``: "no value".
 """
+
 from __future__ import annotations
 
 import json

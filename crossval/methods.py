@@ -3,6 +3,7 @@
 A method is registered lazily by module path so that ``crossval scene check`` never imports a
 solver, and a scene only runs through the methods that can represent it.
 """
+
 from __future__ import annotations
 
 import importlib
@@ -37,10 +38,10 @@ class Resolution:
 class Sweeps:
     """The resolutions the harness runs a method at (in the method's own ``resolution``)."""
 
-    study: tuple[float, ...]        # ``crossval study`` unless told otherwise
-    quick: tuple[float, ...]        # ``crossval report --quick``
-    full: tuple[float, ...]         # ``crossval report``
-    regression: float               # ``crossval regress``: one quick run per suite scene
+    study: tuple[float, ...]  # ``crossval study`` unless told otherwise
+    quick: tuple[float, ...]  # ``crossval report --quick``
+    full: tuple[float, ...]  # ``crossval report``
+    regression: float  # ``crossval regress``: one quick run per suite scene
     #: ``crossval compare --quick``: the method's own quick resolution where it does not count
     #: elements per radius (None: the shared ``--resolution``)
     compare_quick: float | None = None
@@ -92,8 +93,11 @@ class Method:
         r = self.resolution(scene)
         if r.low <= resolution <= r.high:
             return
-        limits = f"from {_nice(r.low, up=True)} to {_nice(r.high, up=False)}" if math.isfinite(r.high) else \
-            f"{_nice(r.low, up=True)} or more"
+        limits = (
+            f"from {_nice(r.low, up=True)} to {_nice(r.high, up=False)}"
+            if math.isfinite(r.high)
+            else f"{_nice(r.low, up=True)} or more"
+        )
         why = r.above if resolution > r.high else r.below
         why = f" ({why})" if why else ""
         raise SceneError(field, f"{self.name} takes {limits} here{why}; it means {r.meaning} (got {resolution:g})")
@@ -131,8 +135,15 @@ def _griffith_applies(scene: Scene) -> str | None:
 def _griffith_resolution(scene: Scene) -> Resolution:
     from bem_griffith.solver import max_elements_per_radius
 
-    return Resolution(_PER_RADIUS, _N_PER_RADIUS, _coarsest_grid(scene), float(max_elements_per_radius(scene)), True,
-                      below=_TOO_COARSE, above="a finer grid needs more than the solver's memory limit")
+    return Resolution(
+        _PER_RADIUS,
+        _N_PER_RADIUS,
+        _coarsest_grid(scene),
+        float(max_elements_per_radius(scene)),
+        True,
+        below=_TOO_COARSE,
+        above="a finer grid needs more than the solver's memory limit",
+    )
 
 
 def _fem_applies(scene: Scene) -> str | None:
@@ -144,11 +155,15 @@ def _fem_applies(scene: Scene) -> str | None:
 def _fem_resolution(scene: Scene) -> Resolution:
     from fem_reference.solver import MAX_ISOTROPIC_GRADING
 
-    graded = getattr(scene.material, "exponent", 0.0) > 0    # the tensor mesh (fem_reference.model)
+    graded = getattr(scene.material, "exponent", 0.0) > 0  # the tensor mesh (fem_reference.model)
     # FemSettings.grading in [0.05, 4]; resolution = 1 / grading
-    return Resolution("mesh refinement 1/grading (elements grow by at most 1/resolution x their distance from "
-                      "the punch edge)", "N: 1/grading", 1 / (4.0 if graded else MAX_ISOTROPIC_GRADING), 1 / 0.05,
-                      False)
+    return Resolution(
+        "mesh refinement 1/grading (elements grow by at most 1/resolution x their distance from the punch edge)",
+        "N: 1/grading",
+        1 / (4.0 if graded else MAX_ISOTROPIC_GRADING),
+        1 / 0.05,
+        False,
+    )
 
 
 def _energy_applies(scene: Scene) -> str | None:
@@ -157,41 +172,54 @@ def _energy_applies(scene: Scene) -> str | None:
     if not isinstance(scene.material, cs.Homogeneous):
         return "the energy method is validated for homogeneous half-spaces only"
     if scene.adhesion.range is None and scene.adhesion.work_of_adhesion > 0 and not scene.indenter.profile.is_flat:
-        return ("its zero-range extrapolation is calibrated on flat faces (the edge of a flat punch); "
-                "give adhesion.range to run a finite range")
+        return (
+            "its zero-range extrapolation is calibrated on flat faces (the edge of a flat punch); "
+            "give adhesion.range to run a finite range"
+        )
     return None
 
 
 def _energy_resolution(scene: Scene) -> Resolution:
     if scene.adhesion.range is None and scene.adhesion.work_of_adhesion > 0:
         # ZeroRangeSettings.elements_per_process_zone
-        return Resolution("elements per process zone l_c of each range of the zero-range sequence",
-                          "N: elements/process zone", 0.25, 64.0, False)
+        return Resolution(
+            "elements per process zone l_c of each range of the zero-range sequence",
+            "N: elements/process zone",
+            0.25,
+            64.0,
+            False,
+        )
     return Resolution(_PER_RADIUS, _N_PER_RADIUS, _coarsest_grid(scene), math.inf, True, below=_TOO_COARSE)
 
 
 METHODS: dict[str, Method] = {
     "bem_griffith": Method(
-        "bem_griffith", "bem_griffith",
+        "bem_griffith",
+        "bem_griffith",
         "FFT boundary elements with the Pohrt-Popov local Griffith detachment criterion",
-        _griffith_applies, _griffith_resolution,
+        _griffith_applies,
+        _griffith_resolution,
         # quick: the finest is checked, and its bars shrink like 1/N (bem_griffith.error_model):
         # 32 per radius costs about twice 16 on the suite and halves the bars
         Sweeps(study=(8, 12, 16, 24, 32), quick=(16, 24, 32), full=(16, 24, 32, 48, 64), regression=16),
         reference_kind="sequence",
     ),
     "bem_energy": Method(
-        "bem_energy", "bem_energy",
+        "bem_energy",
+        "bem_energy",
         "FFT boundary elements minimising elastic + finite-range adhesive energy (zero-range limit by extrapolation)",
-        _energy_applies, _energy_resolution,
+        _energy_applies,
+        _energy_resolution,
         # zero-range limit: elements per process zone (1.0: the coarse sequence)
         Sweeps(study=(1.0, 2.0, 3.0), quick=(1.0,), full=(1.0, 2.0), regression=1.0, compare_quick=1.0),
         uses_range=True,
     ),
     "fem_reference": Method(
-        "fem_reference", "fem_reference",
+        "fem_reference",
+        "fem_reference",
         "axisymmetric Taylor-Hood finite elements with a Griffith energy release rate (circular faces)",
-        _fem_applies, _fem_resolution,
+        _fem_applies,
+        _fem_resolution,
         # quick: one mesh; its own bound is its error bar, and as the reference it has no error to plot
         Sweeps(study=(0.5, 2 / 3, 1.0), quick=(0.5,), full=(0.5, 2 / 3, 1.0), regression=0.5),
         reference_kind="bounded",

@@ -1,4 +1,5 @@
 """Plots of results; every function takes ``ax=None`` and returns the axes it drew on."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -36,8 +37,14 @@ def plot_contact(snapshot, ax=None, *, face=None):
     nx, ny = img.shape
     h = snapshot.spacing
     x0, y0 = snapshot.origin
-    ax.imshow(img.T, origin="lower", cmap="Greys", vmin=0, vmax=1,
-              extent=(x0 - h / 2, x0 + (nx - 0.5) * h, y0 - h / 2, y0 + (ny - 0.5) * h))
+    ax.imshow(
+        img.T,
+        origin="lower",
+        cmap="Greys",
+        vmin=0,
+        vmax=1,
+        extent=(x0 - h / 2, x0 + (nx - 0.5) * h, y0 - h / 2, y0 + (ny - 0.5) * h),
+    )
     ax.set_aspect("equal")
     ax.set_title(f"d = {snapshot.approach:.4g}")
     return ax
@@ -108,29 +115,47 @@ def plot_error_vs_time(study, ax=None):
     rows = [r for r in study.rows if np.isfinite(r.error)]
     ax.set_title("\n".join(textwrap.wrap(f"error against {ref_name}", 48)), fontsize=8)
     if not rows or (ref is not None and ref.kind == "none") or all(r.error <= unc for r in rows):
-        why = (ref_name if ref is None or ref.kind == "none"
-               else f"every error lies within the reference's error bar (+-{unc:.1e})")
-        ax.text(0.5, 0.5, "\n".join(textwrap.wrap(f"no trustworthy reference: {why}", 40)), ha="center",
-                va="center", transform=ax.transAxes, fontsize=8)
+        why = (
+            ref_name
+            if ref is None or ref.kind == "none"
+            else f"every error lies within the reference's error bar (+-{unc:.1e})"
+        )
+        ax.text(
+            0.5,
+            0.5,
+            "\n".join(textwrap.wrap(f"no trustworthy reference: {why}", 40)),
+            ha="center",
+            va="center",
+            transform=ax.transAxes,
+            fontsize=8,
+        )
         ax.xaxis.set_major_locator(NullLocator())
         ax.yaxis.set_major_locator(NullLocator())
         return ax
-    by_method = {m: sorted((r for r in rows if r.method == m), key=lambda r: r.resolution)
-                 for m in dict.fromkeys(r.method for r in rows)}
+    by_method = {
+        m: sorted((r for r in rows if r.method == m), key=lambda r: r.resolution)
+        for m in dict.fromkeys(r.method for r in rows)
+    }
     # a time axis only where timings mean something: long enough, and growing with resolution
-    timed = (min(r.wall_time_s for r in rows) >= TIME_NOISE_FLOOR_S
-             and all(np.all(np.diff([r.wall_time_s for r in mr]) > 0) for mr in by_method.values()))
+    timed = min(r.wall_time_s for r in rows) >= TIME_NOISE_FLOOR_S and all(
+        np.all(np.diff([r.wall_time_s for r in mr]) > 0) for mr in by_method.values()
+    )
     for m, mr in by_method.items():
         x = [r.wall_time_s if timed else r.resolution for r in mr]
         e = [max(r.error, 1e-12) for r in mr]
         label = m if timed else f"{m} ({_resolution_meaning(study, m)})"
         (line,) = ax.plot(x, e, "-", lw=1, label=label)
         for xi, r, ei in zip(x, mr, e, strict=True):
-            ax.plot(xi, ei, "o", color=line.get_color(), ms=5,
-                    mfc=line.get_color() if r.error > unc else "white")
+            ax.plot(xi, ei, "o", color=line.get_color(), ms=5, mfc=line.get_color() if r.error > unc else "white")
             if not timed:
-                ax.annotate(f"{r.wall_time_s:.2g} s", (xi, ei), textcoords="offset points", xytext=(4, 3),
-                            fontsize=6, color=line.get_color())
+                ax.annotate(
+                    f"{r.wall_time_s:.2g} s",
+                    (xi, ei),
+                    textcoords="offset points",
+                    xytext=(4, 3),
+                    fontsize=6,
+                    color=line.get_color(),
+                )
     ax.set_xscale("log")
     ax.set_yscale("log")
     lo, hi = _decade_limits([r.error for r in rows] + ([unc] if unc > 0 else []))
@@ -156,9 +181,11 @@ def plot_error_vs_time(study, ax=None):
         ax.xaxis.set_minor_locator(NullLocator())
         ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:.3g}"))
         ax.tick_params(axis="x", labelsize=7, labelrotation=45)
-        ax.set_xlabel(f"resolution N; wall time noted at each run (timings under {TIME_NOISE_FLOOR_S:g} s, "
-                      "or not growing with N, are noise)",
-                      fontsize=8)
+        ax.set_xlabel(
+            f"resolution N; wall time noted at each run (timings under {TIME_NOISE_FLOOR_S:g} s, "
+            "or not growing with N, are noise)",
+            fontsize=8,
+        )
     ax.set_ylabel(f"relative error of {study.quantity}")
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     return ax
@@ -189,13 +216,19 @@ def plot_agreement(matrix, scenes, methods, ax=None, *, notes=None):
             v = arr[i, j]
             note = notes[i][j] if notes is not None else ""
             if not np.isfinite(v):
-                ax.add_patch(Rectangle((j - 0.5, i - 0.5), 1, 1, facecolor="white", edgecolor="0.6",
-                                       hatch="///", lw=0))
-                ax.text(j, i, note or "-", ha="center", va="center", fontsize=7, color="k",
-                        bbox=dict(facecolor="white", edgecolor="none", pad=1))
+                ax.add_patch(Rectangle((j - 0.5, i - 0.5), 1, 1, facecolor="white", edgecolor="0.6", hatch="///", lw=0))
+                ax.text(
+                    j,
+                    i,
+                    note or "-",
+                    ha="center",
+                    va="center",
+                    fontsize=7,
+                    color="k",
+                    bbox=dict(facecolor="white", edgecolor="none", pad=1),
+                )
             else:
                 text = f"{v:.1e}" + (f"\n{note}" if note else "")
-                ax.text(j, i, text, ha="center", va="center", fontsize=6 if note else 7,
-                        color="k" if v < 1e-3 else "w")
+                ax.text(j, i, text, ha="center", va="center", fontsize=6 if note else 7, color="k" if v < 1e-3 else "w")
     ax.figure.colorbar(im, ax=ax, label="log10 |F_A / reference - 1|")
     return ax

@@ -1,10 +1,11 @@
 """pytest plugin (entry point ``pytest11``): reference results for testing your own solver.
 
-    def test_my_solver(adhesion_reference):
-        ref = adhesion_reference("kendall_circle")           # or any contact_scene.Scene
-        d, F = my_solver(...)                                 # your force-approach curve
-        assert_matches_reference(ref, curve=(d, F), rtol=0.01)
+def test_my_solver(adhesion_reference):
+    ref = adhesion_reference("kendall_circle")           # or any contact_scene.Scene
+    d, F = my_solver(...)                                 # your force-approach curve
+    assert_matches_reference(ref, curve=(d, F), rtol=0.01)
 """
+
 from __future__ import annotations
 
 import pytest

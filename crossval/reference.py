@@ -1,4 +1,5 @@
 """Reference results for people who test their own solvers against this package."""
+
 from __future__ import annotations
 
 import math
@@ -51,8 +52,10 @@ def reference(scene_or_name, *, resolution: float = 64) -> Reference:
     return Reference(scene, r)
 
 
-_SIGNS = ("this package's convention is F < 0 in tension and d < 0 when pulled (the pull-off force is the "
-          "magnitude of the most tensile F); if your code counts tension positive, pass curve=(-d, -F)")
+_SIGNS = (
+    "this package's convention is F < 0 in tension and d < 0 when pulled (the pull-off force is the "
+    "magnitude of the most tensile F); if your code counts tension positive, pass curve=(-d, -F)"
+)
 
 
 def _from_curve(approach, force):
@@ -67,39 +70,50 @@ def _from_curve(approach, force):
     return float(-F[i]), float(d[i]), float((F[j] - F[0]) / (d[j] - d[0]))
 
 
-def assert_matches_reference(ref: Reference, *, pulloff_force=None, pulloff_approach=None, stiffness=None,
-                             curve=None, rtol: float = 0.0) -> None:
+def assert_matches_reference(
+    ref: Reference, *, pulloff_force=None, pulloff_approach=None, stiffness=None, curve=None, rtol: float = 0.0
+) -> None:
     """Raise AssertionError naming every quantity that differs from the reference by more than
     the reference's own error bar on it plus ``rtol``.  A ``curve`` (approach, force) is reduced
     to its largest tensile force, the approach there, and the slope of its first segment; of
     these, quantities the reference has no bar for are not compared.  A quantity given
     explicitly that the reference has no bar for is an error (ValueError), not a pass."""
-    __tracebackhide__ = True    # pytest shows the message, not this function's body
+    __tracebackhide__ = True  # pytest shows the message, not this function's body
     if pulloff_force is not None and pulloff_force < 0:
         raise AssertionError(f"pulloff_force = {pulloff_force:.6g} is negative; it is a magnitude: {_SIGNS}")
-    explicit = {n for n, v in (("pulloff_force", pulloff_force), ("pulloff_approach", pulloff_approach),
-                               ("stiffness", stiffness)) if v is not None}
+    explicit = {
+        n
+        for n, v in (("pulloff_force", pulloff_force), ("pulloff_approach", pulloff_approach), ("stiffness", stiffness))
+        if v is not None
+    }
     if curve is not None:
         f, d, k = _from_curve(*curve)
         pulloff_force = f if pulloff_force is None else pulloff_force
         pulloff_approach = d if pulloff_approach is None else pulloff_approach
         stiffness = k if stiffness is None else stiffness
     bad = []
-    for name, value in (("pulloff_force", pulloff_force), ("pulloff_approach", pulloff_approach),
-                        ("stiffness", stiffness)):
+    for name, value in (
+        ("pulloff_force", pulloff_force),
+        ("pulloff_approach", pulloff_approach),
+        ("stiffness", stiffness),
+    ):
         if value is None:
             continue
         own = ref.error_bar(name)
         if own is None:
             if name in explicit:
-                raise ValueError(f"scene {ref.scene.name or '(unnamed)'}: the reference ({ref.result.method}) has no "
-                                 f"error bar on {name}, so it cannot be checked against it")
+                raise ValueError(
+                    f"scene {ref.scene.name or '(unnamed)'}: the reference ({ref.result.method}) has no "
+                    f"error bar on {name}, so it cannot be checked against it"
+                )
             continue
         tol = own + rtol
         want = getattr(ref.result, name)
         diff = value / want - 1 if want else math.inf
         if not abs(diff) <= tol:
-            bad.append(f"{name}: {value:.6g} vs reference {want:.6g} ({ref.result.method}): {diff:+.3%}, "
-                       f"tolerance {tol:.3%} (reference accuracy {own:.3%} + rtol {rtol:.3%})")
+            bad.append(
+                f"{name}: {value:.6g} vs reference {want:.6g} ({ref.result.method}): {diff:+.3%}, "
+                f"tolerance {tol:.3%} (reference accuracy {own:.3%} + rtol {rtol:.3%})"
+            )
     if bad:
         raise AssertionError(f"scene {ref.scene.name or '(unnamed)'}: " + "; ".join(bad))

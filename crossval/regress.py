@@ -3,6 +3,7 @@
 For people who use this package as the reference in their own regression tests, and for
 ours: a change that moves a stored number beyond its tolerance is reported, never silent.
 """
+
 from __future__ import annotations
 
 import json
@@ -38,8 +39,10 @@ class Mismatch:
     rtol: float
 
     def explain(self) -> str:
-        return (f"{self.scene}/{self.method}: {self.quantity} = {self.now:.10g}, stored {self.stored:.10g} "
-                f"({self.now / self.stored - 1:+.2e}, tolerance {self.rtol:.0e})")
+        return (
+            f"{self.scene}/{self.method}: {self.quantity} = {self.now:.10g}, stored {self.stored:.10g} "
+            f"({self.now / self.stored - 1:+.2e}, tolerance {self.rtol:.0e})"
+        )
 
 
 def _jobs():
@@ -50,9 +53,16 @@ def regress(*, update: bool = False, path: Path = REFERENCE_FILE, workers: int =
     """Recompute the cases and compare them with ``path`` (or rewrite it with ``update``)."""
     jobs = _jobs()
     results = run_jobs(jobs, workers=workers, callback=callback)
-    current = [{"scene": j.scene.name, "method": j.method, "resolution": j.resolution,
-                "values": {q: getattr(r, q) for q in QUANTITIES}, "rtol": RTOL}
-               for j, r in zip(jobs, results, strict=True)]
+    current = [
+        {
+            "scene": j.scene.name,
+            "method": j.method,
+            "resolution": j.resolution,
+            "values": {q: getattr(r, q) for q in QUANTITIES},
+            "rtol": RTOL,
+        }
+        for j, r in zip(jobs, results, strict=True)
+    ]
     if update:
         data = {"format": FORMAT, "package_version": package_version(), "cases": current}
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -70,8 +80,9 @@ def regress(*, update: bool = False, path: Path = REFERENCE_FILE, workers: int =
     for c in current:
         ref = index.get((c["scene"], c["method"], c["resolution"]))
         if ref is None:
-            out.append(Mismatch(c["scene"], c["method"], "(missing from the reference file)",
-                                float("nan"), float("nan"), 0))
+            out.append(
+                Mismatch(c["scene"], c["method"], "(missing from the reference file)", float("nan"), float("nan"), 0)
+            )
             continue
         for q in QUANTITIES:
             a, b = ref["values"][q], c["values"][q]

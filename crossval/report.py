@@ -1,5 +1,6 @@
 """The method-comparison report over the built-in suite: index.html (images embedded),
 results.json and PNG plots."""
+
 from __future__ import annotations
 
 import base64
@@ -65,7 +66,9 @@ AGREEMENT_CAPTION = (
     "(closed form; else the FEM; else the Griffith BEM extrapolated in 1/N, 'own extrap.' on its own row). "
     "'calib.': a calibration residual, matching by construction; '< ref. error bar': the difference is "
     "smaller than the reference's own error bar, so not resolved. Hatched cells have no value: "
-    + "; ".join(f"'{k}' = {v}" for k, v in plotting.BLANK_REASONS.items()) + ".")
+    + "; ".join(f"'{k}' = {v}" for k, v in plotting.BLANK_REASONS.items())
+    + "."
+)
 
 
 def _agreement_row(scene, st, fin, checks, methods):
@@ -97,24 +100,40 @@ def _agreement_row(scene, st, fin, checks, methods):
 def _error_sentence(st) -> str:
     """What the error panel measures against, and what each method's sequence supports."""
     ref = st.reference_info
-    kind = {"closed form": "the closed form",
-            "bounded": f"{ref.own_method}'s finest run; its a-posteriori bound is the error bar",
-            "extrapolated": (f"{ref.own_method}'s sequence, forces scaled to the nominal face area, extrapolated to "
-                             "N -> infinity in 1/N; the error bar is the "
-                             "spread of the leave-one-out extrapolations, and errors inside it are not resolved"),
-            "none": "nothing: there is no trustworthy reference"}[ref.kind]
+    kind = {
+        "closed form": "the closed form",
+        "bounded": f"{ref.own_method}'s finest run; its a-posteriori bound is the error bar",
+        "extrapolated": (
+            f"{ref.own_method}'s sequence, forces scaled to the nominal face area, extrapolated to "
+            "N -> infinity in 1/N; the error bar is the "
+            "spread of the leave-one-out extrapolations, and errors inside it are not resolved"
+        ),
+        "none": "nothing: there is no trustworthy reference",
+    }[ref.kind]
     parts = [f"Error of the {st.quantity.replace('_', ' ')} measured against {st.reference_name}: {kind}."]
     conv = "; ".join(f"{m}: {c.text}" for m, c in st.convergence.items())
     if conv:
         parts.append(f"Convergence in resolution: {conv}.")
     timed = [f"{m}: error ~ time^-{c.order:.2f}" for m, c in st.time_convergence.items() if c.kind == "order"]
-    parts.append(f"Against wall time: {', '.join(timed)}." if timed else
-                 "No exponent of error against wall time (runs too short, or no rate in resolution).")
+    parts.append(
+        f"Against wall time: {', '.join(timed)}."
+        if timed
+        else "No exponent of error against wall time (runs too short, or no rate in resolution)."
+    )
     return " ".join(parts)
 
 
-def report(out_dir="report", *, quick: bool = True, workers: int = 1, scheduler=None, cache_dir=".crossval-cache",
-           scenes=None, callback=None, extremes: bool | None = None) -> Report:
+def report(
+    out_dir="report",
+    *,
+    quick: bool = True,
+    workers: int = 1,
+    scheduler=None,
+    cache_dir=".crossval-cache",
+    scenes=None,
+    callback=None,
+    extremes: bool | None = None,
+) -> Report:
     """Run the suite, check every method, write the report; returns what it found.
 
     ``extremes`` (default: the full report only) adds the stiff and extreme cases table of
@@ -179,29 +198,58 @@ def report(out_dir="report", *, quick: bool = True, workers: int = 1, scheduler=
         rows = "".join(
             f"<tr><td>{html.escape(m)}</td><td>{r.pulloff_force:.6g}</td><td>{r.pulloff_approach:.6g}</td>"
             f"<td>{r.stiffness:.6g}</td><td>{r.curve.contact_area[0] if r.curve is not None else float('nan'):.4g}</td>"
-            f"<td>{r.wall_time_s:.2f}</td><td>{r.converged}</td></tr>" for m, r in finest[s].items())
-        theory_rows = "".join(f"<tr><td>{html.escape(k)}</td><td>{v:.6g}</td></tr>"
-                              for k, v in th.items() if k != "source")
-        chk = "".join(f"<li class={'ok' if c.passed else 'fail'}>{c.label}: {html.escape(c.explain())}</li>"
-                      for c in checks[s])
-        notes_html = "".join(f"<li>{html.escape(m)}: {html.escape(msg)}</li>"
-                             for m, r in finest[s].items() for msg in r.messages)
+            f"<td>{r.wall_time_s:.2f}</td><td>{r.converged}</td></tr>"
+            for m, r in finest[s].items()
+        )
+        theory_rows = "".join(
+            f"<tr><td>{html.escape(k)}</td><td>{v:.6g}</td></tr>" for k, v in th.items() if k != "source"
+        )
+        chk = "".join(
+            f"<li class={'ok' if c.passed else 'fail'}>{c.label}: {html.escape(c.explain())}</li>" for c in checks[s]
+        )
+        notes_html = "".join(
+            f"<li>{html.escape(m)}: {html.escape(msg)}</li>" for m, r in finest[s].items() for msg in r.messages
+        )
         sections.append(
             f"<h2 id='{s}'>{html.escape(s)}</h2><table><tr><th>method</th><th>F_A</th><th>d at F_A</th>"
             f"<th>stiffness</th>"
             f"<th>initial area</th><th>wall s</th><th>converged</th></tr>{rows}</table>"
             f"<p>Theory ({html.escape(th.get('source', 'none'))}):</p><table>{theory_rows}</table>"
             f"<p>{html.escape(_error_sentence(st))}</p>"
-            f"<ul>{chk}</ul><ul>{notes_html}</ul><img src='data:image/png;base64,{img}' alt='{html.escape(s)}'>")
+            f"<ul>{chk}</ul><ul>{notes_html}</ul><img src='data:image/png;base64,{img}' alt='{html.escape(s)}'>"
+        )
         ref = st.reference_info
         data["scenes"][s] = {
-            "reference": {"value": st.reference, "name": st.reference_name, "kind": ref.kind,
-                          "uncertainty": ref.uncertainty},
-            "runs": [{"method": r.method, "resolution": r.resolution, "wall_time_s": r.wall_time_s,
-                      "pulloff_force": r.value, "error": r.error, "signed_error": r.signed_error} for r in st.rows],
+            "reference": {
+                "value": st.reference,
+                "name": st.reference_name,
+                "kind": ref.kind,
+                "uncertainty": ref.uncertainty,
+            },
+            "runs": [
+                {
+                    "method": r.method,
+                    "resolution": r.resolution,
+                    "wall_time_s": r.wall_time_s,
+                    "pulloff_force": r.value,
+                    "error": r.error,
+                    "signed_error": r.signed_error,
+                }
+                for r in st.rows
+            ],
             "finest": {m: {k: v for k, v in r.to_json().items() if k != "curve"} for m, r in finest[s].items()},
-            "checks": [{"method": c.method, "quantity": c.quantity, "value": c.value, "reference": c.reference,
-                        "tolerance": c.tolerance, "passed": c.passed, "role": c.role} for c in checks[s]],
+            "checks": [
+                {
+                    "method": c.method,
+                    "quantity": c.quantity,
+                    "value": c.value,
+                    "reference": c.reference,
+                    "tolerance": c.tolerance,
+                    "passed": c.passed,
+                    "role": c.role,
+                }
+                for c in checks[s]
+            ],
             "rates": st.rates,
             "time_rates": st.time_rates,
             "convergence": {m: c.to_json() for m, c in st.convergence.items()},
@@ -214,8 +262,10 @@ def report(out_dir="report", *, quick: bool = True, workers: int = 1, scheduler=
         data["extremes"] = [dict(zip(ex.HEADERS, r, strict=True)) for r in extreme_rows]
         head = "".join(f"<th>{html.escape(h)}</th>" for h in ex.HEADERS)
         body = "".join("<tr>" + "".join(f"<td>{html.escape(str(v))}</td>" for v in r) + "</tr>" for r in extreme_rows)
-        extreme_html = (f"<h2 id='extremes'>Stiff and extreme cases</h2><p>Stiffness error against Eq. 1 / Eq. 34 "
-                        f"(n/a where there is no closed form).</p><table><tr>{head}</tr>{body}</table>")
+        extreme_html = (
+            f"<h2 id='extremes'>Stiff and extreme cases</h2><p>Stiffness error against Eq. 1 / Eq. 34 "
+            f"(n/a where there is no closed form).</p><table><tr>{head}</tr>{body}</table>"
+        )
     passed = all(c.passed for cs_ in checks.values() for c in cs_)
     data["passed"] = passed
     wall = time.perf_counter() - t0
@@ -228,8 +278,8 @@ def report(out_dir="report", *, quick: bool = True, workers: int = 1, scheduler=
         f"<p>package {package_version()}; {len(names)} scenes; "
         f"{'all checks passed' if passed else 'SOME CHECKS FAILED'}; "
         f"{wall:.0f} s.</p><h2>Agreement</h2><img src='data:image/png;base64,{agreement_png}' alt='agreement'>"
-        f"<p>{html.escape(AGREEMENT_CAPTION)}</p>" + "".join(sections)
-        + extreme_html)
+        f"<p>{html.escape(AGREEMENT_CAPTION)}</p>" + "".join(sections) + extreme_html
+    )
     _write_atomic(out / "index.html", page.encode())
     _write_atomic(out / "results.json", json_dumps(data, indent=1).encode())
     return Report(out, studies, checks, passed, wall)

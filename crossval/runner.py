@@ -1,6 +1,7 @@
 """Run many (scene, method, resolution) jobs: serially, in local processes, or on a dask
 cluster, with the same results in every case (each solve is deterministic and uses one FFT
 thread)."""
+
 from __future__ import annotations
 
 import logging
@@ -33,8 +34,14 @@ def default_workers() -> int:
     return max(1, os.cpu_count() or 1)
 
 
-def run_jobs(jobs: Sequence[Job], *, workers: int = 1, scheduler: str | None = None,
-             cache: ResultCache | None = None, callback: Callable[[Job, cs.Result], None] | None = None) -> list:
+def run_jobs(
+    jobs: Sequence[Job],
+    *,
+    workers: int = 1,
+    scheduler: str | None = None,
+    cache: ResultCache | None = None,
+    callback: Callable[[Job, cs.Result], None] | None = None,
+) -> list:
     """Results in the order of ``jobs``.  ``scheduler`` is a dask.distributed address (or a
     ``distributed.Client``); ``workers`` > 1 uses local processes.  Cached results are reused
     and new ones stored."""

@@ -18,6 +18,7 @@ not used for a rate.  A convergence order is fitted only where the errors keep t
 fall monotonically over at least three resolutions and the power law follows them closely;
 otherwise the study reports an envelope, error <= c/N.
 """
+
 from __future__ import annotations
 
 import math
@@ -32,8 +33,17 @@ from .compare import reference_values
 from .methods import METHODS, applicable_methods, reference_method
 from .runner import Job, run_jobs
 
-__all__ = ["StudyRow", "Study", "Convergence", "ErrorReference", "study", "convergence",
-           "extrapolate_first_order", "DEFAULT_RESOLUTIONS", "TIME_NOISE_FLOOR_S"]
+__all__ = [
+    "StudyRow",
+    "Study",
+    "Convergence",
+    "ErrorReference",
+    "study",
+    "convergence",
+    "extrapolate_first_order",
+    "DEFAULT_RESOLUTIONS",
+    "TIME_NOISE_FLOOR_S",
+]
 
 #: per method, the resolutions a study sweeps unless told otherwise (BEM: elements per
 #: radius; FEM: 1/grading)
@@ -55,13 +65,14 @@ class StudyRow:
     resolution: float
     wall_time_s: float
     value: float
-    error: float            # |relative error| against the reference; NaN where not measured
-    signed_error: float = math.nan   # value / reference - 1
+    error: float  # |relative error| against the reference; NaN where not measured
+    signed_error: float = math.nan  # value / reference - 1
 
 
 @dataclass(frozen=True)
 class ErrorReference:
     """What the errors are measured against."""
+
     value: float
     name: str
     #: "closed form" | "bounded" (one result with a bounded error) | "extrapolated" | "none"
@@ -76,17 +87,22 @@ class ErrorReference:
 
 
 #: what a study without a closed form, a bounded method or an extrapolated sequence measures against
-NO_REFERENCE = ErrorReference(math.nan, "no reference (no closed form, no bounded method, fewer than 3 resolutions of "
-                                        "an extrapolated sequence)", "none", math.inf)
+NO_REFERENCE = ErrorReference(
+    math.nan,
+    "no reference (no closed form, no bounded method, fewer than 3 resolutions of an extrapolated sequence)",
+    "none",
+    math.inf,
+)
 
 
 @dataclass(frozen=True)
 class Convergence:
     """How one method's error falls with resolution (or time)."""
+
     #: "order": a fitted power law; "envelope": error <= c / N only; "none": nothing to say
     kind: str
-    order: float = math.nan       # fitted order p in error ~ N^-p ("order" only)
-    constant: float = math.nan    # c of the envelope error <= c / N (max of error * N)
+    order: float = math.nan  # fitted order p in error ~ N^-p ("order" only)
+    constant: float = math.nan  # c of the envelope error <= c / N (max of error * N)
     reason: str = ""
 
     @property
@@ -98,8 +114,13 @@ class Convergence:
         return f"no rate ({self.reason})"
 
     def to_json(self) -> dict:
-        return {"kind": self.kind, "order": self.order, "constant": self.constant, "reason": self.reason,
-                "text": self.text}
+        return {
+            "kind": self.kind,
+            "order": self.order,
+            "constant": self.constant,
+            "reason": self.reason,
+            "text": self.text,
+        }
 
 
 @dataclass(frozen=True, eq=False)
@@ -114,9 +135,9 @@ class Study:
     #: method -> fitted exponent of error against wall time, NaN where the timings or the
     #: errors do not support one
     time_rates: dict = field(default_factory=dict)
-    results: dict = field(default_factory=dict)        # (method, resolution) -> Result
+    results: dict = field(default_factory=dict)  # (method, resolution) -> Result
     reference_info: ErrorReference = field(default_factory=lambda: NO_REFERENCE)
-    convergence: dict = field(default_factory=dict)    # method -> Convergence in resolution
+    convergence: dict = field(default_factory=dict)  # method -> Convergence in resolution
     time_convergence: dict = field(default_factory=dict)  # method -> Convergence in wall time
 
 
@@ -147,8 +168,9 @@ def convergence(resolutions, errors, *, floor: float = 0.0) -> Convergence:
             return Convergence("none", reason="every error is below the reference's error bar")
         return Convergence("envelope", constant=c, reason="errors below the reference's error bar")
     if len(x) < 3:
-        return Convergence("envelope", constant=c, reason=f"{len(x)} resolution{'s' if len(x) != 1 else ''}, "
-                                                          "a rate needs 3")
+        return Convergence(
+            "envelope", constant=c, reason=f"{len(x)} resolution{'s' if len(x) != 1 else ''}, a rate needs 3"
+        )
     a = np.abs(e)
     if np.any(np.sign(e) != np.sign(e[0])) or np.any(np.diff(a) >= 0):
         return Convergence("envelope", constant=c, reason="errors zig-zag")
@@ -203,8 +225,13 @@ def _reference(scene, quantity, by, res) -> ErrorReference:
         r = by[(bounded, finest)]
         bar = r.error_bars.get(quantity)
         u = bar.relative if bar is not None else math.inf
-        return ErrorReference(getattr(r, quantity), f"{bounded} at {METHODS[bounded].resolution(scene).label} = "
-                                                    f"{finest:g} (+-{u:.1e})", "bounded", u, own_method=bounded)
+        return ErrorReference(
+            getattr(r, quantity),
+            f"{bounded} at {METHODS[bounded].resolution(scene).label} = {finest:g} (+-{u:.1e})",
+            "bounded",
+            u,
+            own_method=bounded,
+        )
     seq = _reference_method(scene, "sequence")
     if seq is not None and len(res.get(seq, ())) >= 3:
         ns = sorted(res[seq])
@@ -212,8 +239,14 @@ def _reference(scene, quantity, by, res) -> ErrorReference:
         lim, err = extrapolate_first_order(ns, vals)
         u = err / abs(lim) if lim else math.inf
         how = ", forces scaled to the nominal area," if all(scaled) else ""
-        return ErrorReference(lim, f"{seq}{how} extrapolated in 1/N over N = {', '.join(f'{n:g}' for n in ns)} "
-                                   f"(+-{u:.1e})", "extrapolated", u, own_method=seq, own_sequence=True)
+        return ErrorReference(
+            lim,
+            f"{seq}{how} extrapolated in 1/N over N = {', '.join(f'{n:g}' for n in ns)} (+-{u:.1e})",
+            "extrapolated",
+            u,
+            own_method=seq,
+            own_sequence=True,
+        )
     return NO_REFERENCE
 
 
@@ -228,8 +261,17 @@ def _time_convergence(rows, floor) -> Convergence:
     return cv if cv.kind == "order" else Convergence("none", reason=cv.reason)
 
 
-def study(scene: cs.Scene, *, methods=None, resolutions: dict | None = None, quantity: str = "pulloff_force",
-          workers: int = 1, scheduler=None, cache=None, callback=None) -> Study:
+def study(
+    scene: cs.Scene,
+    *,
+    methods=None,
+    resolutions: dict | None = None,
+    quantity: str = "pulloff_force",
+    workers: int = 1,
+    scheduler=None,
+    cache=None,
+    callback=None,
+) -> Study:
     """Run each method over its resolutions and measure the error of ``quantity`` against the
     best reference available (module docstring); the runs a reference needs beyond the methods
     asked for (the FEM, the Griffith sequence) are run as well but not reported as rows."""
@@ -264,12 +306,18 @@ def study(scene: cs.Scene, *, methods=None, resolutions: dict | None = None, qua
             # its errors against its own 1/N extrapolation have order 1 by construction
             c = convergence([r.resolution for r in mr], [r.signed_error for r in mr], floor=ref.uncertainty)
             reason = "its own 1/N extrapolation is the reference, so the order is assumed, not measured"
-            conv[m] = Convergence("envelope", constant=c.constant, reason=reason) if math.isfinite(c.constant) \
+            conv[m] = (
+                Convergence("envelope", constant=c.constant, reason=reason)
+                if math.isfinite(c.constant)
                 else Convergence("none", reason=reason)
+            )
             tconv[m] = Convergence("none", reason=reason)
         else:
             conv[m] = convergence([r.resolution for r in mr], [r.signed_error for r in mr], floor=ref.uncertainty)
-            tconv[m] = (_time_convergence(mr, ref.uncertainty) if conv[m].kind == "order"
-                        else Convergence("none", reason=conv[m].reason))
+            tconv[m] = (
+                _time_convergence(mr, ref.uncertainty)
+                if conv[m].kind == "order"
+                else Convergence("none", reason=conv[m].reason)
+            )
         rates[m], trates[m] = conv[m].order, tconv[m].order
     return Study(scene, quantity, ref.value, ref.name, tuple(rows), rates, trates, by, ref, conv, tconv)

@@ -6,6 +6,7 @@ circle, which is compressible (nu = 0.3) so that E and E* differ.  The ``paper_*
 paper's fitted experiments in SI units (Figs. 13-15), shipped as examples but not in the suite.
 A scene's name is its file's stem, so a name means one scene wherever it appears.
 """
+
 from __future__ import annotations
 
 from importlib import resources
@@ -18,8 +19,18 @@ __all__ = ["SUITE", "BUILTIN", "SCENE_DIR", "scene", "load_scene_or_builtin"]
 #: where the built-in scene files live (inside the installed package)
 SCENE_DIR = Path(str(resources.files("crossval") / "scenes"))
 
-_SUITE_NAMES = ("kendall_circle", "incompressible_circle", "graded_circle_k0.25", "graded_circle_k0.5", "square",
-                "triangle", "star", "rectangle", "two_circles", "jkr_sphere")
+_SUITE_NAMES = (
+    "kendall_circle",
+    "incompressible_circle",
+    "graded_circle_k0.25",
+    "graded_circle_k0.5",
+    "square",
+    "triangle",
+    "star",
+    "rectangle",
+    "two_circles",
+    "jkr_sphere",
+)
 
 
 def _load(path: Path) -> cs.Scene:
@@ -49,5 +60,7 @@ def load_scene_or_builtin(file_or_name: str | Path) -> cs.Scene:
         return cs.load_scene(path)
     if str(file_or_name) in BUILTIN:
         return BUILTIN[str(file_or_name)]
-    raise cs.SceneError("file", f"no file {str(file_or_name)!r} and no built-in scene of that name; "
-                        f"built-in scenes: {', '.join(BUILTIN)}")
+    raise cs.SceneError(
+        "file",
+        f"no file {str(file_or_name)!r} and no built-in scene of that name; built-in scenes: {', '.join(BUILTIN)}",
+    )

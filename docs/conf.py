@@ -13,6 +13,7 @@ re-runs only the examples whose source changed since the last build in the same 
 so a short build after a full one keeps the full pictures of unchanged scripts: delete
 ``docs/auto_examples`` to rebuild them all.
 """
+
 from __future__ import annotations
 
 import os
@@ -56,8 +57,16 @@ extensions = [
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 root_doc = "index"
-exclude_patterns = ["_build", "Thumbs.db", ".DS_Store", "auto_examples/*.ipynb", "auto_examples/*.py",
-                    "auto_examples/*.zip", "auto_examples/*.json", "auto_examples/*.md5"]
+exclude_patterns = [
+    "_build",
+    "Thumbs.db",
+    ".DS_Store",
+    "auto_examples/*.ipynb",
+    "auto_examples/*.py",
+    "auto_examples/*.zip",
+    "auto_examples/*.json",
+    "auto_examples/*.md5",
+]
 templates_path = ["_templates"]
 
 # -- API reference -------------------------------------------------------------------------
@@ -107,8 +116,7 @@ def _plain_text_bars(app, what, name, obj, options, lines):
     magnitude, which reStructuredText would read as a substitution.  Escape the bars outside
     inline literals."""
     for i, line in enumerate(lines):
-        lines[i] = "".join(part if part.startswith("``") else part.replace("|", r"\|")
-                           for part in _LITERAL.split(line))
+        lines[i] = "".join(part if part.startswith("``") else part.replace("|", r"\|") for part in _LITERAL.split(line))
 
 
 #: pages that benchmark scripts write when they are run (benchmarks/study_error_models.py,

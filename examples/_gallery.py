@@ -12,6 +12,7 @@ tens of minutes) or ``short`` (the versions the tests run, seconds: the document
 default).  A full run writes its picture to ``ADHESIVE_PUNCH_PICTURES`` (default: the current
 directory).
 """
+
 from __future__ import annotations
 
 import os
@@ -55,8 +56,15 @@ def contact_map(ax, snapshot, face=None, *, scale: float = 1.0, unit: str = "", 
     nx, ny = img.shape
     h = snapshot.spacing / scale
     x0, y0 = (c / scale for c in snapshot.origin)
-    ax.imshow(img.T, origin="lower", cmap="Greys", vmin=0, vmax=1, interpolation="nearest",
-              extent=(x0 - h / 2, x0 + (nx - 0.5) * h, y0 - h / 2, y0 + (ny - 0.5) * h))
+    ax.imshow(
+        img.T,
+        origin="lower",
+        cmap="Greys",
+        vmin=0,
+        vmax=1,
+        interpolation="nearest",
+        extent=(x0 - h / 2, x0 + (nx - 0.5) * h, y0 - h / 2, y0 + (ny - 0.5) * h),
+    )
     ax.set_aspect("equal")
     suffix = f" [{unit}]" if unit else ""
     ax.set_xlabel("x" + suffix)
@@ -72,8 +80,11 @@ def contact_handles(extra=()):
     from matplotlib.patches import Patch
 
     cmap = plt.get_cmap("Greys")
-    return [Patch(facecolor=cmap(FACE_GREY), edgecolor="0.5", lw=0.5, label="face, detached"),
-            Patch(facecolor=cmap(CONTACT_BLACK), edgecolor="none", label="in contact"), *extra]
+    return [
+        Patch(facecolor=cmap(FACE_GREY), edgecolor="0.5", lw=0.5, label="face, detached"),
+        Patch(facecolor=cmap(CONTACT_BLACK), edgecolor="none", label="in contact"),
+        *extra,
+    ]
 
 
 def contact_legend(ax, *, loc="upper right", extra=(), **kw):

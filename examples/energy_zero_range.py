@@ -13,6 +13,7 @@ l_c = 0.01 a with the rate fitted, the procedure that also serves faces with cor
     python examples/energy_zero_range.py        # full version, writes energy_zero_range.png
     from examples.energy_zero_range import run  # short version (used by the tests)
 """
+
 from __future__ import annotations
 
 import contact_scene as cs
@@ -23,12 +24,18 @@ def run(ratios=(0.32, 0.16, 0.08), minimum_elements_per_radius: float = 16, rate
     import bem_energy as be
 
     scene = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.0), cs.Adhesion(0.02))
-    res = be.solve(scene, be.ZeroRangeSettings(ratios=ratios, minimum_elements_per_radius=minimum_elements_per_radius,
-                                               rate=rate))
+    res = be.solve(
+        scene, be.ZeroRangeSettings(ratios=ratios, minimum_elements_per_radius=minimum_elements_per_radius, rate=rate)
+    )
     FK = T.kendall_adhesion_force(E_star=1.0, radius=1.0, work=0.02)
     zr = res.info["zero_range"]
-    return {"result": res, "kendall": FK, "ratios": zr["process_zone_ratios"],
-            "forces": [f / FK for f in zr["pulloff_forces"]], "extrapolated": res.pulloff_force / FK}
+    return {
+        "result": res,
+        "kendall": FK,
+        "ratios": zr["process_zone_ratios"],
+        "forces": [f / FK for f in zr["pulloff_forces"]],
+        "extrapolated": res.pulloff_force / FK,
+    }
 
 
 def main(path: str = "energy_zero_range.png") -> None:
@@ -50,17 +57,19 @@ def main(path: str = "energy_zero_range.png") -> None:
     ax.set_ylabel("F_A / F_Kendall")
     ax.legend()
     fig.savefig(path, dpi=120)
-    print(f"extrapolated F_A / F_Kendall - 1 = {out['extrapolated'] - 1:+.3%} "
-          f"(estimate {out['result'].accuracy_estimate:.2%})")
+    print(
+        f"extrapolated F_A / F_Kendall - 1 = {out['extrapolated'] - 1:+.3%} "
+        f"(estimate {out['result'].accuracy_estimate:.2%})"
+    )
 
 
 if __name__ == "__main__":
-    try:                                # run as a script, or by the documentation's gallery
+    try:  # run as a script, or by the documentation's gallery
         from examples import _gallery
     except ImportError:
         import _gallery
 
-    if _gallery.short_run():            # the tests' sequence, l_c / a = 0.32, 0.16, 0.08 at rate 1/2
+    if _gallery.short_run():  # the tests' sequence, l_c / a = 0.32, 0.16, 0.08 at rate 1/2
         import matplotlib.pyplot as plt
         import numpy as np
 
@@ -77,7 +86,9 @@ if __name__ == "__main__":
         ax.set_ylabel("F_A / F_Kendall")
         ax.set_title("zero-range limit of the energy BEM, circle", fontsize=10)
         ax.legend()
-        print(f"extrapolated F_A / F_Kendall - 1 = {out['extrapolated'] - 1:+.3%} "
-              f"(estimate {out['result'].accuracy_estimate:.2%})")
+        print(
+            f"extrapolated F_A / F_Kendall - 1 = {out['extrapolated'] - 1:+.3%} "
+            f"(estimate {out['result'].accuracy_estimate:.2%})"
+        )
     else:
         main(str(_gallery.picture_path("energy_zero_range")))

@@ -18,6 +18,7 @@ The short version runs the sphere at 16, 24, 32 elements per face radius and the
     python examples/fig03_jkr_and_orientation.py        # full version, writes fig03_jkr_and_orientation.png
     from examples.fig03_jkr_and_orientation import run  # short version (used by the tests)
 """
+
 from __future__ import annotations
 
 import dataclasses
@@ -27,13 +28,17 @@ import numpy as np
 import contact_scene as cs
 from contact_scene import theory as T
 
-try:                                    # imported as examples.<name> (tests) or run as a script
+try:  # imported as examples.<name> (tests) or run as a script
     from examples import _gallery
 except ImportError:
     import _gallery
 
-SPHERE = cs.Scene(cs.Indenter(cs.Circle(0.42), cs.Paraboloid(1.0)), cs.Homogeneous(0.75, 0.5), cs.Adhesion(0.01),
-                  cs.Loading(press_approach=0.15))
+SPHERE = cs.Scene(
+    cs.Indenter(cs.Circle(0.42), cs.Paraboloid(1.0)),
+    cs.Homogeneous(0.75, 0.5),
+    cs.Adhesion(0.01),
+    cs.Loading(press_approach=0.15),
+)
 
 
 def jkr(resolutions=(16, 24, 32)) -> dict:
@@ -52,10 +57,17 @@ def jkr(resolutions=(16, 24, 32)) -> dict:
         # roundness of the contact half-way to pull-off: radius of the outermost contact cell in
         # eight sectors, max over min
         d_mid = 0.5 * (c.approach[0] + c.approach[i])
-        r2 = bg.solve(dataclasses.replace(SPHERE, outputs=cs.Outputs(snapshots=(d_mid,))),
-                      bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)))
-        out[N] = {"result": r, "max_deviation": float(dev.max()), "mean_deviation": float(dev.mean()),
-                  "roundness": _roundness(r2.snapshots[0]), "spacing": r.grid_spacing}
+        r2 = bg.solve(
+            dataclasses.replace(SPHERE, outputs=cs.Outputs(snapshots=(d_mid,))),
+            bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)),
+        )
+        out[N] = {
+            "result": r,
+            "max_deviation": float(dev.max()),
+            "mean_deviation": float(dev.mean()),
+            "roundness": _roundness(r2.snapshots[0]),
+            "spacing": r.grid_spacing,
+        }
     return out
 
 
@@ -104,29 +116,47 @@ def plot(out: dict, path=None):
 
     fig, axs = plt.subplots(1, 2, figsize=(11, 4.4), layout="constrained")
     a = np.linspace(1e-3, 0.42, 200)
-    axs[0].plot(a, T.jkr_force(E_star=1.0, work=0.01, sphere_radius=1.0, contact_radius=a), "k-", lw=0.8,
-                label="JKR: F = 4 E* a^3 / (3R) - sqrt(8 pi w E* a^3)")
+    axs[0].plot(
+        a,
+        T.jkr_force(E_star=1.0, work=0.01, sphere_radius=1.0, contact_radius=a),
+        "k-",
+        lw=0.8,
+        label="JKR: F = 4 E* a^3 / (3R) - sqrt(8 pi w E* a^3)",
+    )
     for N, o in out["jkr"].items():
         c = o["result"].curve
         # every state whose contact has receded from the pressed (pinned) one; the deviation is
         # measured up to the force maximum, past it (fixed grips) the contact keeps following JKR
         sel = (c.contact_area < c.contact_area[0]) & (c.contact_area > 0)
-        axs[0].plot(np.sqrt(c.contact_area[sel] / np.pi), c.force[sel], ".", ms=3,
-                    label=f"BEM, {N:g} per face radius: max deviation {o['max_deviation']:.1%} of F_pull-off")
+        axs[0].plot(
+            np.sqrt(c.contact_area[sel] / np.pi),
+            c.force[sel],
+            ".",
+            ms=3,
+            label=f"BEM, {N:g} per face radius: max deviation {o['max_deviation']:.1%} of F_pull-off",
+        )
     axs[0].set_xlabel("contact radius a = sqrt(A / pi)")
     axs[0].set_ylabel("force F")
-    axs[0].set_title("(a) sphere (R = 1, E* = 1, w = 0.01) pulled from a Hertz press:\n"
-                     "the receding contact (face radius 0.42); deviations up to the force maximum", fontsize=9)
+    axs[0].set_title(
+        "(a) sphere (R = 1, E* = 1, w = 0.01) pulled from a Hertz press:\n"
+        "the receding contact (face radius 0.42); deviations up to the force maximum",
+        fontsize=9,
+    )
     axs[0].legend(fontsize=7, loc="upper right")
     F0 = out["square"][0.0].pulloff_force
     spread = max(abs(r.pulloff_force / F0 - 1) for r in out["square"].values())
     for ang, r in out["square"].items():
-        axs[1].plot(r.curve.approach, r.curve.force, label=f"square at {ang:g} deg: F_A / F_A(0 deg) - 1 = "
-                                                            f"{r.pulloff_force / F0 - 1:+.2%}")
+        axs[1].plot(
+            r.curve.approach,
+            r.curve.force,
+            label=f"square at {ang:g} deg: F_A / F_A(0 deg) - 1 = {r.pulloff_force / F0 - 1:+.2%}",
+        )
     axs[1].set_xlabel("approach d")
     axs[1].set_ylabel("force F")
-    axs[1].set_title(f"(b) square punch (side 2, E* = w = 1) rotated against the grid:\n"
-                     f"pull-off forces within {spread:.2%}", fontsize=9)
+    axs[1].set_title(
+        f"(b) square punch (side 2, E* = w = 1) rotated against the grid:\npull-off forces within {spread:.2%}",
+        fontsize=9,
+    )
     axs[1].legend(fontsize=7, loc="lower right")
     if path is not None:
         fig.savefig(path, dpi=120)
@@ -135,8 +165,10 @@ def plot(out: dict, path=None):
 
 def report(out: dict) -> None:
     for N, o in out["jkr"].items():
-        print(f"JKR {N}: max |F - F_JKR(a)| / F_pulloff = {o['max_deviation']:.3f}, mean {o['mean_deviation']:.3f}, "
-              f"roundness {o['roundness']:.3f}")
+        print(
+            f"JKR {N}: max |F - F_JKR(a)| / F_pulloff = {o['max_deviation']:.3f}, mean {o['mean_deviation']:.3f}, "
+            f"roundness {o['roundness']:.3f}"
+        )
     F0 = out["square"][0.0].pulloff_force
     for ang, r in out["square"].items():
         print(f"square at {ang:g} deg: F_A / F_A(0 deg) - 1 = {r.pulloff_force / F0 - 1:+.4f}")

@@ -16,12 +16,13 @@ The short version runs 12 elements per radius, the full version 64::
     python examples/fig04_convex_shapes.py       # full version, writes fig04_convex_shapes.png
     from examples.fig04_convex_shapes import run # short version (the tests use N = 12)
 """
+
 from __future__ import annotations
 
 import contact_scene as cs
 from contact_scene import theory as T
 
-try:                                    # imported as examples.<name> (tests) or run as a script
+try:  # imported as examples.<name> (tests) or run as a script
     from examples import _gallery
 except ImportError:
     import _gallery
@@ -44,10 +45,14 @@ def run(N: float = 64) -> dict:
         d_up = T.upper_bound_approach(E_star=1.0, work=1.0, area=shape.area)
         a_in = shape.incircle().radius
         out[name] = {
-            "result": r, "F_up": F_up, "d_up": d_up,
+            "result": r,
+            "F_up": F_up,
+            "d_up": d_up,
             "max": r.pulloff_force / F_up,
-            "incircle": (T.lower_bound_approach(E_star=1.0, work=1.0, incircle_radius=a_in) / abs(d_up),
-                         -T.lower_bound_force(E_star=1.0, work=1.0, incircle_radius=a_in) / F_up),
+            "incircle": (
+                T.lower_bound_approach(E_star=1.0, work=1.0, incircle_radius=a_in) / abs(d_up),
+                -T.lower_bound_force(E_star=1.0, work=1.0, incircle_radius=a_in) / F_up,
+            ),
         }
     return out
 
@@ -61,14 +66,27 @@ def plot(out: dict, path=None, *, resolution: float = 64):
     fig, ax = plt.subplots(figsize=(7, 5), layout="constrained")
     for name, o in out.items():
         r = o["result"]
-        line, = ax.plot(r.curve.approach / abs(o["d_up"]), r.curve.force / o["F_up"],
-                        label=f"{name}: F_max / F_A,upper = {o['max']:.3f}")
+        (line,) = ax.plot(
+            r.curve.approach / abs(o["d_up"]),
+            r.curve.force / o["F_up"],
+            label=f"{name}: F_max / F_A,upper = {o['max']:.3f}",
+        )
         ax.plot(*o["incircle"], "+", color=line.get_color(), ms=12, mew=2)
     ax.axhline(-1.0, color="grey", lw=0.8)
     ax.text(-0.78, -0.985, "upper bound: the circle of equal area (Eq. 13)", color="grey", fontsize=8, va="bottom")
     handles, _ = ax.get_legend_handles_labels()
-    handles.append(Line2D([], [], ls="none", marker="+", color="k", ms=10, mew=2,
-                          label="incircle's Kendall state (lower bound, Eqs. 18-19)"))
+    handles.append(
+        Line2D(
+            [],
+            [],
+            ls="none",
+            marker="+",
+            color="k",
+            ms=10,
+            mew=2,
+            label="incircle's Kendall state (lower bound, Eqs. 18-19)",
+        )
+    )
     ax.legend(handles=handles, fontsize=8, loc="upper center")
     ax.set_xlabel("approach d / |d_A,upper|  (Eq. 14)")
     ax.set_ylabel("force F / F_A,upper  (Eq. 13)")

@@ -17,6 +17,7 @@ elements per radius, the full version all three at 48::
     python examples/fig05_star.py        # full version, writes fig05_star.png
     from examples.fig05_star import run  # short version (used by the tests)
 """
+
 from __future__ import annotations
 
 import dataclasses
@@ -26,17 +27,32 @@ import numpy as np
 import contact_scene as cs
 from contact_scene import theory as T
 
-try:                                    # imported as examples.<name> (tests) or run as a script
+try:  # imported as examples.<name> (tests) or run as a script
     from examples import _gallery
 except ImportError:
     import _gallery
 
 STAR = cs.Star(5, 1.0, 0.45)
 #: Fig. 6's "complicated shapes": a cross and an irregular concave polygon
-CROSS = cs.Polygon(((-0.3, -1.0), (0.3, -1.0), (0.3, -0.3), (1.0, -0.3), (1.0, 0.3), (0.3, 0.3), (0.3, 1.0),
-                    (-0.3, 1.0), (-0.3, 0.3), (-1.0, 0.3), (-1.0, -0.3), (-0.3, -0.3)))
-IRREGULAR = cs.Polygon(((-1.0, -0.6), (0.2, -0.9), (0.5, -0.3), (1.1, -0.5), (0.9, 0.4), (0.3, 0.5), (0.1, 1.0),
-                        (-0.6, 0.7), (-0.4, 0.1)))
+CROSS = cs.Polygon(
+    (
+        (-0.3, -1.0),
+        (0.3, -1.0),
+        (0.3, -0.3),
+        (1.0, -0.3),
+        (1.0, 0.3),
+        (0.3, 0.3),
+        (0.3, 1.0),
+        (-0.3, 1.0),
+        (-0.3, 0.3),
+        (-1.0, 0.3),
+        (-1.0, -0.3),
+        (-0.3, -0.3),
+    )
+)
+IRREGULAR = cs.Polygon(
+    ((-1.0, -0.6), (0.2, -0.9), (0.5, -0.3), (1.1, -0.5), (0.9, 0.4), (0.3, 0.5), (0.1, 1.0), (-0.6, 0.7), (-0.4, 0.1))
+)
 
 
 def run(resolution: float = 16, *, fields: bool = False, shape=STAR) -> dict:
@@ -49,7 +65,7 @@ def run(resolution: float = 16, *, fields: bool = False, shape=STAR) -> dict:
     r = bg.solve(scene, st)
     c = r.curve
     A0 = c.contact_area[0]
-    first = int(np.argmax(c.contact_area < A0))            # the first recorded loss of contact
+    first = int(np.argmax(c.contact_area < A0))  # the first recorded loss of contact
     # snapshots record the contact at the approach before that approach's detachment cascade,
     # so look just past the first event
     d_first = float(c.approach[first]) * (1 + 1e-9)
@@ -74,11 +90,16 @@ def run(resolution: float = 16, *, fields: bool = False, shape=STAR) -> dict:
     F_lo = T.lower_bound_force(E_star=1.0, work=1.0, incircle_radius=inc)
     d_lo = T.lower_bound_approach(E_star=1.0, work=1.0, incircle_radius=inc)
     ls = r.last_stable
-    return {"result": r, "snapshots": r2.snapshots, "first_lost_radius": float(r_lost.min()) if r_lost.size else np.nan,
-            "tip_radius": float(np.hypot(v[:, 0] - cx, v[:, 1] - cy).max()),
-            "first_lost_to_corner": float(to_corner.max() / r.grid_spacing) if r_lost.size else np.nan,
-            "last_stable_normalised": (ls.approach / d_lo, ls.force / -F_lo),
-            "last_area_over_incircle": ls.contact_area / (np.pi * inc**2), "mid": snaps[d_mid]}
+    return {
+        "result": r,
+        "snapshots": r2.snapshots,
+        "first_lost_radius": float(r_lost.min()) if r_lost.size else np.nan,
+        "tip_radius": float(np.hypot(v[:, 0] - cx, v[:, 1] - cy).max()),
+        "first_lost_to_corner": float(to_corner.max() / r.grid_spacing) if r_lost.size else np.nan,
+        "last_stable_normalised": (ls.approach / d_lo, ls.force / -F_lo),
+        "last_area_over_incircle": ls.contact_area / (np.pi * inc**2),
+        "mid": snaps[d_mid],
+    }
 
 
 def _face_mask(result, shape=STAR):
@@ -108,7 +129,9 @@ def plot(outs: dict, path=None):
     star = outs["star"]
     face = _face_mask(star["result"])
     first_loss(fig.add_subplot(2, 4, 1), star["snapshots"][0], face, "star")
-    for i, (s, what) in enumerate(((star["snapshots"][1], "half-way"), (star["result"].last_stable, "last stable state"))):
+    for i, (s, what) in enumerate(
+        ((star["snapshots"][1], "half-way"), (star["result"].last_stable, "last stable state"))
+    ):
         _gallery.contact_map(fig.add_subplot(2, 4, i + 2), s, face, title=f"star: {what}\nd = {s.approach:.3f}")
     ax3 = fig.add_subplot(2, 4, 4, projection="3d")
     plot_surface(star["mid"], ax3, stride=2)
@@ -123,12 +146,17 @@ def plot(outs: dict, path=None):
         f = _face_mask(o["result"], shape)
         first_loss(fig.add_subplot(2, 4, col), o["snapshots"][0], f, name)
         ls = o["result"].last_stable
-        _gallery.contact_map(fig.add_subplot(2, 4, col + 1), ls, f, title=f"{name}: last stable state\nd = {ls.approach:.3f}")
+        _gallery.contact_map(
+            fig.add_subplot(2, 4, col + 1), ls, f, title=f"{name}: last stable state\nd = {ls.approach:.3f}"
+        )
         col += 2
     lost = Line2D([], [], ls="none", marker="o", mfc="none", mec="r", ms=9, label="first cells lost")
     fig.legend(handles=_gallery.contact_handles([lost]), loc="outside lower center", fontsize=8, ncols=3)
-    fig.suptitle("Figs. 5-6: contact (black) on the face (grey); lengths in units of the star's tip radius,"
-                 " approach d in sqrt(w R / E*)", fontsize=10)
+    fig.suptitle(
+        "Figs. 5-6: contact (black) on the face (grey); lengths in units of the star's tip radius,"
+        " approach d in sqrt(w R / E*)",
+        fontsize=10,
+    )
     if path is not None:
         fig.savefig(path, dpi=120)
     return fig
@@ -137,25 +165,32 @@ def plot(outs: dict, path=None):
 def report(outs: dict) -> None:
     for name, o in outs.items():
         d, F = o["last_stable_normalised"]
-        print(f"{name}: first cells lost at r >= {o['first_lost_radius']:.3f} (farthest vertex at {o['tip_radius']:.3f}), "
-              f"within {o['first_lost_to_corner']:.2f} cells of a convex corner; last stable state at "
-              f"d/d_lower = {d:.3f}, F/F_lower = {F:.3f}, area / incircle area = {o['last_area_over_incircle']:.3f}")
+        print(
+            f"{name}: first cells lost at r >= {o['first_lost_radius']:.3f} "
+            f"(farthest vertex at {o['tip_radius']:.3f}), "
+            f"within {o['first_lost_to_corner']:.2f} cells of a convex corner; last stable state at "
+            f"d/d_lower = {d:.3f}, F/F_lower = {F:.3f}, area / incircle area = {o['last_area_over_incircle']:.3f}"
+        )
 
 
 def main(path=None) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
-    outs = {"star": run(resolution=48, fields=True),
-            **{name: run(resolution=48, shape=shape) for name, shape in (("cross", CROSS), ("irregular", IRREGULAR))}}
+    outs = {
+        "star": run(resolution=48, fields=True),
+        **{name: run(resolution=48, shape=shape) for name, shape in (("cross", CROSS), ("irregular", IRREGULAR))},
+    }
     plot(outs, path or _gallery.picture_path("fig05_star"))
     report(outs)
 
 
 if __name__ == "__main__":
     if _gallery.short_run():
-        outs = {"star": run(resolution=16, fields=True),
-                **{name: run(resolution=12, shape=shape) for name, shape in (("cross", CROSS), ("irregular", IRREGULAR))}}
+        outs = {
+            "star": run(resolution=16, fields=True),
+            **{name: run(resolution=12, shape=shape) for name, shape in (("cross", CROSS), ("irregular", IRREGULAR))},
+        }
         plot(outs)
         report(outs)
     else:

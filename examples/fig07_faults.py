@@ -14,12 +14,13 @@ The short version runs 40 cells per side, the full version 96::
     python examples/fig07_faults.py        # full version, writes fig07_faults.png
     from examples.fig07_faults import run  # short version (used by the tests)
 """
+
 from __future__ import annotations
 
 import contact_scene as cs
 from contact_scene import theory as T
 
-try:                                    # imported as examples.<name> (tests) or run as a script
+try:  # imported as examples.<name> (tests) or run as a script
     from examples import _gallery
 except ImportError:
     import _gallery
@@ -37,7 +38,7 @@ def run(cells_per_side: int = 40) -> dict:
     import bem_griffith as bg
 
     out = {}
-    E = cs.Homogeneous(0.75, 0.5)       # E* = 1
+    E = cs.Homogeneous(0.75, 0.5)  # E* = 1
     for name, kw in FAULTS.items():
         shape = cs.SquareWithFaults(side=1.0, **kw)
         sc = cs.Scene(cs.Indenter(shape), E, cs.Adhesion(1.0))
@@ -65,10 +66,14 @@ def plot(out: dict, path=None):
     for ax, (name, o) in zip(axs[1:], out.items(), strict=False):
         r = o["result"]
         face = cs.rasterise(cs.SquareWithFaults(side=1.0, **FAULTS[name]), r.grid_spacing).mask
-        _gallery.contact_map(ax, r.last_stable, face,
-                             title=f"{name}: last stable contact\nphi = {o['phi']:.3f}, "
-                                   f"F_A / (F_A,plain sqrt(phi)) = {o['F_over_plain'] / o['sqrt_phi']:.3f}")
-    for ax in axs[len(out) + 1:]:
+        _gallery.contact_map(
+            ax,
+            r.last_stable,
+            face,
+            title=f"{name}: last stable contact\nphi = {o['phi']:.3f}, "
+            f"F_A / (F_A,plain sqrt(phi)) = {o['F_over_plain'] / o['sqrt_phi']:.3f}",
+        )
+    for ax in axs[len(out) + 1 :]:
         ax.set_visible(False)
     for name, o in out.items():
         axs[0].plot(o["result"].curve.approach, o["result"].curve.force, label=name)
@@ -86,8 +91,10 @@ def plot(out: dict, path=None):
 
 def report(out: dict) -> None:
     for name, o in out.items():
-        print(f"{name:>16}: phi = {o['phi']:.4f}  F/F_plain = {o['F_over_plain']:.4f}  sqrt(phi) = {o['sqrt_phi']:.4f}"
-              f"  ratio = {o['F_over_plain'] / o['sqrt_phi']:.4f}  F/F_upper(phi) = {o['F_over_upper']:.4f}")
+        print(
+            f"{name:>16}: phi = {o['phi']:.4f}  F/F_plain = {o['F_over_plain']:.4f}  sqrt(phi) = {o['sqrt_phi']:.4f}"
+            f"  ratio = {o['F_over_plain'] / o['sqrt_phi']:.4f}  F/F_upper(phi) = {o['F_over_upper']:.4f}"
+        )
 
 
 def main(path=None) -> None:

@@ -19,6 +19,7 @@ The short version runs 24 elements per core radius, the full version 48::
     python examples/fig09_constant_force.py        # full version, writes fig09_constant_force.png
     from examples.fig09_constant_force import run  # short version (used by the tests)
 """
+
 from __future__ import annotations
 
 import math
@@ -27,12 +28,12 @@ import numpy as np
 
 import contact_scene as cs
 
-try:                                    # imported as examples.<name> (tests) or run as a script
+try:  # imported as examples.<name> (tests) or run as a script
     from examples import _gallery
 except ImportError:
     import _gallery
 
-R0 = 0.5                     # core radius; the rays follow Eq. 29 out to OUTER
+R0 = 0.5  # core radius; the rays follow Eq. 29 out to OUTER
 
 
 def run(resolution: float = 16, *, n_rays: int = 8, outer: float = 1.0, window=(0.6, 0.9)) -> dict:
@@ -52,9 +53,16 @@ def run(resolution: float = 16, *, n_rays: int = 8, outer: float = 1.0, window=(
     pulling = np.arange(len(a)) >= int(np.argmax(c.contact_area < c.contact_area[0]))  # detachment under way
     m = pulling & (a > window[0] * outer) & (a < window[1] * outer)
     F = -c.force[m] / F0
-    return {"result": r, "shape": star, "F0": F0, "radius": a[m], "force": F,
-            "plateau_spread": float(F.max() / F.min()), "plateau_level": float(np.median(F)),
-            "disc_spread": (window[1] / window[0]) ** 1.5}
+    return {
+        "result": r,
+        "shape": star,
+        "F0": F0,
+        "radius": a[m],
+        "force": F,
+        "plateau_spread": float(F.max() / F.min()),
+        "plateau_level": float(np.median(F)),
+        "disc_spread": (window[1] / window[0]) ** 1.5,
+    }
 
 
 def contact_radius(area):
@@ -68,24 +76,35 @@ def plot(out: dict, path=None):
 
     r = out["result"]
     fig, axs = plt.subplots(1, 3, figsize=(12, 4.0), layout="constrained")
-    _gallery.contact_map(axs[0], r.last_stable, cs.rasterise(out["shape"], r.grid_spacing).mask,
-                         title=f"last stable contact (core radius r0 = {R0:g})")
+    _gallery.contact_map(
+        axs[0],
+        r.last_stable,
+        cs.rasterise(out["shape"], r.grid_spacing).mask,
+        title=f"last stable contact (core radius r0 = {R0:g})",
+    )
     _gallery.contact_legend(axs[0], loc="lower left", fontsize=6, framealpha=0.9)
     c = r.curve
     axs[1].plot(-c.approach, -c.force / out["F0"], label="BEM (Griffith)")
     a = contact_radius(c.contact_area)
     pulling = np.arange(len(a)) >= int(np.argmax(c.contact_area < c.contact_area[0]))
-    inside = pulling & (a >= out["radius"].min()) & (a <= out["radius"].max())      # the points of the right panel
-    axs[1].plot(-c.approach[inside], -c.force[inside] / out["F0"], ".", ms=3, color="C1",
-                label=f"right panel: a = {out['radius'].min():.2f} ... {out['radius'].max():.2f}")
+    inside = pulling & (a >= out["radius"].min()) & (a <= out["radius"].max())  # the points of the right panel
+    axs[1].plot(
+        -c.approach[inside],
+        -c.force[inside] / out["F0"],
+        ".",
+        ms=3,
+        color="C1",
+        label=f"right panel: a = {out['radius'].min():.2f} ... {out['radius'].max():.2f}",
+    )
     axs[1].set_xlabel("pull-off distance -d")
     axs[1].set_ylabel("-F / F0,  F0 = sqrt(8 pi E* w r0^3)  (Eq. 29)")
     axs[1].set_title("force against pull-off distance (E* = w = 1)", fontsize=9)
     axs[1].legend(fontsize=7, loc="lower center")
     axs[2].plot(out["radius"], out["force"], ".", color="C1", label="BEM, detachment under way")
     a = np.linspace(out["radius"].min(), out["radius"].max(), 50)
-    axs[2].plot(a, out["plateau_level"] * (a / a[0]) ** 1.5, "--", color="C2",
-                label="a full disc's Kendall force, ~ a^(3/2)")
+    axs[2].plot(
+        a, out["plateau_level"] * (a / a[0]) ** 1.5, "--", color="C2", label="a full disc's Kendall force, ~ a^(3/2)"
+    )
     axs[2].set_xlabel("outer radius a of the contact (the face's: 1)")
     axs[2].set_ylabel("-F / F0")
     axs[2].set_title(f"plateau: max / min = {out['plateau_spread']:.3f} (a disc: {out['disc_spread']:.2f})", fontsize=9)
@@ -96,9 +115,11 @@ def plot(out: dict, path=None):
 
 
 def report(out: dict) -> None:
-    print(f"plateau over a = {out['radius'].min():.3f} .. {out['radius'].max():.3f}: F/F0 = "
-          f"{out['force'].min():.4f} .. {out['force'].max():.4f} (max/min {out['plateau_spread']:.4f}; "
-          f"a disc: {out['disc_spread']:.3f}), median {out['plateau_level']:.4f}")
+    print(
+        f"plateau over a = {out['radius'].min():.3f} .. {out['radius'].max():.3f}: F/F0 = "
+        f"{out['force'].min():.4f} .. {out['force'].max():.4f} (max/min {out['plateau_spread']:.4f}; "
+        f"a disc: {out['disc_spread']:.3f}), median {out['plateau_level']:.4f}"
+    )
 
 
 def main(path=None, resolution: float = 48) -> None:

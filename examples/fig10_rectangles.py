@@ -16,6 +16,7 @@ version 1, 2, 5, 10, 20 at 12; the tapered strip runs at 16 cells per unit width
     python examples/fig10_rectangles.py            # full version, writes fig10_rectangles.png
     from examples.fig10_rectangles import run      # short version (the tests use 1, 4, 8)
 """
+
 from __future__ import annotations
 
 import math
@@ -23,7 +24,7 @@ import math
 import contact_scene as cs
 from contact_scene import theory as T
 
-try:                                    # imported as examples.<name> (tests) or run as a script
+try:  # imported as examples.<name> (tests) or run as a script
     from examples import _gallery
 except ImportError:
     import _gallery
@@ -66,8 +67,11 @@ def run_tapered(cells_across: int = 12, **shape) -> dict:
         r = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(spacing=1.0 / cells_across)))
         ls = r.last_stable
         X, _ = ls.centres()
-        out[name] = {"result": r, "last_stable_fraction": ls.contact_area / face.area,
-                     "last_stable_centre": float(X[ls.contact].mean()) / (x1 - x0)}
+        out[name] = {
+            "result": r,
+            "last_stable_fraction": ls.contact_area / face.area,
+            "last_stable_centre": float(X[ls.contact].mean()) / (x1 - x0),
+        }
     return out
 
 
@@ -80,20 +84,33 @@ def plot(outs: dict, path=None):
     out, tap = outs["rectangles"], outs["tapered"]
     # axes heights follow the faces' shapes (capped for the squat ones) so no panel is mostly blank
     heights = [min(2.2, 8.0 / ar) for ar in out] + [8.0 * 1.7 / 10]
-    fig, axs = plt.subplots(len(heights), 1, figsize=(8.8, sum(heights) + 0.75 * len(heights)),
-                            layout="constrained", gridspec_kw={"height_ratios": heights})
+    fig, axs = plt.subplots(
+        len(heights),
+        1,
+        figsize=(8.8, sum(heights) + 0.75 * len(heights)),
+        layout="constrained",
+        gridspec_kw={"height_ratios": heights},
+    )
     for ax, (ar, o) in zip(axs, out.items(), strict=False):
         r = o["result"]
-        _gallery.contact_map(ax, r.last_stable, cs.rasterise(cs.Rectangle(float(ar), 1.0), r.grid_spacing).mask,
-                             title=f"{ar}:1 rectangle: last stable contact keeps {o['last_stable_fraction']:.2f} of the "
-                                   f"face (incircle {o['incircle_fraction']:.2f});  F_max / F_A,upper = {o['max']:.3f}")
-        if ar <= 2:                                                 # a narrow panel: fewer ticks, none touching
+        _gallery.contact_map(
+            ax,
+            r.last_stable,
+            cs.rasterise(cs.Rectangle(float(ar), 1.0), r.grid_spacing).mask,
+            title=f"{ar}:1 rectangle: last stable contact keeps {o['last_stable_fraction']:.2f} of the "
+            f"face (incircle {o['incircle_fraction']:.2f});  F_max / F_A,upper = {o['max']:.3f}",
+        )
+        if ar <= 2:  # a narrow panel: fewer ticks, none touching
             ax.xaxis.set_major_locator(MultipleLocator(0.5))
     t = tap["tapered"]
-    _gallery.contact_map(axs[-1], t["result"].last_stable, cs.rasterise(tapered_strip(), t["result"].grid_spacing).mask,
-                         title=f"tapered 10:1 strip (width 0.3 to 1.7): last stable contact keeps "
-                               f"{t['last_stable_fraction']:.2f} of the face, centred {t['last_stable_centre']:+.2f} "
-                               f"of its length from the middle")
+    _gallery.contact_map(
+        axs[-1],
+        t["result"].last_stable,
+        cs.rasterise(tapered_strip(), t["result"].grid_spacing).mask,
+        title=f"tapered 10:1 strip (width 0.3 to 1.7): last stable contact keeps "
+        f"{t['last_stable_fraction']:.2f} of the face, centred {t['last_stable_centre']:+.2f} "
+        f"of its length from the middle",
+    )
     fig.legend(handles=_gallery.contact_handles(), loc="outside lower center", fontsize=8, ncols=2)
     if path is not None:
         fig.savefig(path, dpi=110)
@@ -104,8 +121,10 @@ def report(outs: dict) -> None:
     for ar, o in outs["rectangles"].items():
         print(f"{ar}:1  F_max/F_up = {o['max']:.4f}  last stable / face = {o['last_stable_fraction']:.3f}")
     for name, o in outs["tapered"].items():
-        print(f"{name} strip (16 cells across): last stable / face = {o['last_stable_fraction']:.3f}, "
-              f"its centre at x / length = {o['last_stable_centre']:+.3f}")
+        print(
+            f"{name} strip (16 cells across): last stable / face = {o['last_stable_fraction']:.3f}, "
+            f"its centre at x / length = {o['last_stable_centre']:+.3f}"
+        )
 
 
 def main(path=None) -> None:

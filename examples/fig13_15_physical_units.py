@@ -21,6 +21,7 @@ The short version runs 24 elements per equivalent radius, the full version 48::
     python examples/fig13_15_physical_units.py        # full version, writes fig13_15_physical_units.png
     from examples.fig13_15_physical_units import run  # short version (used by the tests)
 """
+
 from __future__ import annotations
 
 import dataclasses
@@ -31,7 +32,7 @@ from scipy.signal import find_peaks
 import contact_scene as cs
 from contact_scene import theory as T
 
-try:                                    # imported as examples.<name> (tests) or run as a script
+try:  # imported as examples.<name> (tests) or run as a script
     from examples import _gallery
 except ImportError:
     import _gallery
@@ -66,7 +67,9 @@ def run(resolution: float = 16, names=None, *, prominence: float = 0.02) -> dict
         peaks = peaks - 1
         inc = face.incircle().radius
         out[name] = {
-            "result": r, "E_star": E_star, "work": w,
+            "result": r,
+            "E_star": E_star,
+            "work": w,
             "maxima": [(float(tension[i]), float(r.curve.approach[i])) for i in peaks],
             "holm_radius": T.holm_radius(stiffness=r.stiffness, E_star=E_star),
             "F_over_upper": r.pulloff_force / T.upper_bound_force(E_star=E_star, work=w, area=face.area),
@@ -80,8 +83,12 @@ def scaled(name: str, length: float) -> cs.Scene:
     """The same scene in units where E* = w = 1 and lengths are divided by ``length``."""
     face, _, _ = FACES[name]
     sc = scene(name)
-    return dataclasses.replace(sc, indenter=cs.Indenter(cs.Transformed(face, scale=1 / length)),
-                               material=cs.Homogeneous(0.75, 0.5), adhesion=cs.Adhesion(1.0))
+    return dataclasses.replace(
+        sc,
+        indenter=cs.Indenter(cs.Transformed(face, scale=1 / length)),
+        material=cs.Homogeneous(0.75, 0.5),
+        adhesion=cs.Adhesion(1.0),
+    )
 
 
 def plot(out: dict, path=None):
@@ -94,8 +101,7 @@ def plot(out: dict, path=None):
         r = o["result"]
         ax = axs[0, col]
         ax.plot(-r.curve.approach / MM, -r.curve.force * 1e3, "r-", label="BEM (Griffith)")
-        ax.plot([-d / MM for _, d in o["maxima"]], [F * 1e3 for F, _ in o["maxima"]], "ko", ms=4,
-                label="force maxima")
+        ax.plot([-d / MM for _, d in o["maxima"]], [F * 1e3 for F, _ in o["maxima"]], "ko", ms=4, label="force maxima")
         ls = r.last_stable
         ax.plot(-ls.approach / MM, -ls.force * 1e3, "bs", ms=4, mfc="none", label="last stable state")
         ax.set_xlabel("pull-off distance -d [mm]")
@@ -106,9 +112,14 @@ def plot(out: dict, path=None):
         face = FACES[name][0]
         cx, cy = face.centroid
         R = o["holm_radius"]
-        _gallery.contact_map(ax, ls, cs.rasterise(face, r.grid_spacing).mask, scale=MM, unit="mm",
-                             title=f"{name}: last stable contact, -d = {-ls.approach / MM:.3f} mm\n"
-                                   f"Holm radius {R / MM:.1f} mm")
+        _gallery.contact_map(
+            ax,
+            ls,
+            cs.rasterise(face, r.grid_spacing).mask,
+            scale=MM,
+            unit="mm",
+            title=f"{name}: last stable contact, -d = {-ls.approach / MM:.3f} mm\nHolm radius {R / MM:.1f} mm",
+        )
         ax.add_patch(plt.Circle((cx / MM, cy / MM), R / MM, fill=False, color="g"))
         # show the whole Holm circle: it can reach beyond the face
         x0, x1 = ax.get_xlim()
@@ -127,9 +138,12 @@ def report(out: dict) -> None:
     for name, o in out.items():
         r = o["result"]
         maxima = ", ".join(f"{F * 1e3:.2f} mN at {d / MM:.3f} mm" for F, d in o["maxima"])
-        print(f"{name:>12}: F_A = {r.pulloff_force * 1e3:.2f} mN at d = {r.pulloff_approach / MM:.3f} mm"
-              f" (F/F_upper = {o['F_over_upper']:.3f}); maxima: {maxima}; Holm radius {o['holm_radius'] / MM:.2f} mm;"
-              f" last stable: F/F_max = {o['last_force_over_max']:.3f}, area/incircle = {o['last_area_over_incircle']:.3f}")
+        print(
+            f"{name:>12}: F_A = {r.pulloff_force * 1e3:.2f} mN at d = {r.pulloff_approach / MM:.3f} mm"
+            f" (F/F_upper = {o['F_over_upper']:.3f}); maxima: {maxima}; Holm radius {o['holm_radius'] / MM:.2f} mm;"
+            f" last stable: F/F_max = {o['last_force_over_max']:.3f},"
+            f" area/incircle = {o['last_area_over_incircle']:.3f}"
+        )
 
 
 def main(path=None, resolution: float = 48) -> None:

@@ -16,13 +16,14 @@ exponents from 0.75 to -0.5 at 48::
     python examples/fig16_graded_star.py        # full version, writes fig16_graded_star.png
     from examples.fig16_graded_star import run  # short version (used by the tests)
 """
+
 from __future__ import annotations
 
 import numpy as np
 
 import contact_scene as cs
 
-try:                                    # imported as examples.<name> (tests) or run as a script
+try:  # imported as examples.<name> (tests) or run as a script
     from examples import _gallery
 except ImportError:
     import _gallery
@@ -40,11 +41,13 @@ def run(resolution: float = 16, exponents=(0.5, -0.5)) -> dict:
         c = r.curve
         i = int(np.argmax(-c.force))
         A0 = c.contact_area[0]
-        out[k] = {"result": r,
-                  "area_at_max": c.contact_area[i] / A0,
-                  "last_stable_area": r.last_stable.contact_area / A0,
-                  "last_force_over_max": r.last_stable.force / c.force[i],
-                  "incircle_area": np.pi * STAR.incircle().radius ** 2 / A0}
+        out[k] = {
+            "result": r,
+            "area_at_max": c.contact_area[i] / A0,
+            "last_stable_area": r.last_stable.contact_area / A0,
+            "last_force_over_max": r.last_stable.force / c.force[i],
+            "incircle_area": np.pi * STAR.incircle().radius ** 2 / A0,
+        }
     return out
 
 
@@ -57,11 +60,16 @@ def plot(out: dict, path=None):
     colours = plt.get_cmap("viridis")(np.linspace(0, 0.9, len(out)))
     for (k, o), colour in zip(out.items(), colours, strict=False):
         r = o["result"]
-        axs[0].plot(r.curve.approach / abs(r.pulloff_approach), r.curve.force / r.pulloff_force, color=colour,
-                    label=f"k = {k:g}: F_last / F_max = {o['last_force_over_max']:.2f}")
+        axs[0].plot(
+            r.curve.approach / abs(r.pulloff_approach),
+            r.curve.force / r.pulloff_force,
+            color=colour,
+            label=f"k = {k:g}: F_last / F_max = {o['last_force_over_max']:.2f}",
+        )
         ls = r.last_stable
-        axs[0].plot(ls.approach / abs(r.pulloff_approach), ls.force / r.pulloff_force, "o", color=colour, ms=4,
-                    mfc="none")
+        axs[0].plot(
+            ls.approach / abs(r.pulloff_approach), ls.force / r.pulloff_force, "o", color=colour, ms=4, mfc="none"
+        )
     axs[0].plot([], [], "o", color="k", mfc="none", ms=4, label="last stable state")
     axs[0].set_xlabel("approach d / |d at F_max|")
     axs[0].set_ylabel("force F / F_max")
@@ -71,8 +79,12 @@ def plot(out: dict, path=None):
     for ax, k, label in zip(axs[1:], shown, "bc", strict=False):
         r = out[k]["result"]
         ls = r.last_stable
-        _gallery.contact_map(ax, ls, cs.rasterise(STAR, r.grid_spacing).mask,
-                             title=f"({label}) k = {k:g}: last stable contact, {out[k]['last_stable_area']:.2f} of the face")
+        _gallery.contact_map(
+            ax,
+            ls,
+            cs.rasterise(STAR, r.grid_spacing).mask,
+            title=f"({label}) k = {k:g}: last stable contact, {out[k]['last_stable_area']:.2f} of the face",
+        )
     fig.legend(handles=_gallery.contact_handles(), loc="outside lower right", fontsize=8, ncols=2)
     if path is not None:
         fig.savefig(path, dpi=120)
@@ -81,8 +93,10 @@ def plot(out: dict, path=None):
 
 def report(out: dict) -> None:
     for k, o in out.items():
-        print(f"k = {k:+.2f}: area at F_max {o['area_at_max']:.3f}, last stable area {o['last_stable_area']:.3f} "
-              f"(incircle {o['incircle_area']:.3f}), F_last / F_max {o['last_force_over_max']:.3f}")
+        print(
+            f"k = {k:+.2f}: area at F_max {o['area_at_max']:.3f}, last stable area {o['last_stable_area']:.3f} "
+            f"(incircle {o['incircle_area']:.3f}), F_last / F_max {o['last_force_over_max']:.3f}"
+        )
 
 
 def main(path=None) -> None:

@@ -13,12 +13,13 @@ instead of 2), the tests run the BEM at 16 per radius::
     python examples/kendall_circle.py            # full version, writes kendall_circle.png
     from examples.kendall_circle import run      # short version (used by the tests)
 """
+
 from __future__ import annotations
 
 import contact_scene as cs
 from contact_scene import theory as T
 
-try:                                    # imported as examples.<name> (tests) or run as a script
+try:  # imported as examples.<name> (tests) or run as a script
     from examples import _gallery
 except ImportError:
     import _gallery
@@ -47,17 +48,32 @@ def plot(out: dict, path=None):
 
     dK, FK = abs(out["kendall_approach"]), out["kendall"]
     fig, ax = plt.subplots(figsize=(7, 5), layout="constrained")
-    ax.plot([0.0, -1.0, -1.0], [0.0, -1.0, 0.0], color="grey", lw=4, alpha=0.4,
-            label="Kendall: F = 2 E* a d up to d_c (Eqs. 1, 4-6)")
+    ax.plot(
+        [0.0, -1.0, -1.0],
+        [0.0, -1.0, 0.0],
+        color="grey",
+        lw=4,
+        alpha=0.4,
+        label="Kendall: F = 2 E* a d up to d_c (Eqs. 1, 4-6)",
+    )
     for key, label, style in (("bem", "Griffith BEM, 64 elements per radius", "-"), ("fem", "FEM reference", "--")):
         r = out[key]
-        ax.plot(r.curve.approach / dK, r.curve.force / FK, style,
-                label=f"{label}: F_A / F_Kendall - 1 = {r.pulloff_force / FK - 1:+.1e}")
+        ax.plot(
+            r.curve.approach / dK,
+            r.curve.force / FK,
+            style,
+            label=f"{label}: F_A / F_Kendall - 1 = {r.pulloff_force / FK - 1:+.1e}",
+        )
     # the methods differ by under a per cent: a close-up of the pull-off corner
     ins = ax.inset_axes([0.56, 0.08, 0.4, 0.4])
     for line in ax.get_lines():
-        ins.plot(*line.get_data(), ls=line.get_linestyle(), lw=line.get_linewidth(), color=line.get_color(),
-                 alpha=line.get_alpha())
+        ins.plot(
+            *line.get_data(),
+            ls=line.get_linestyle(),
+            lw=line.get_linewidth(),
+            color=line.get_color(),
+            alpha=line.get_alpha(),
+        )
     ins.set_xlim(-1.015, -0.985)
     ins.set_ylim(-1.01, -0.97)
     ins.tick_params(labelsize=7)

@@ -6,6 +6,7 @@ stiffness "locks" (grows far above Eq. 1).  The Taylor-Hood form of :mod:`fem_re
 replaces lambda div u by a pressure and stays on Eq. 1 up to nu = 1/2 exactly.
 ``benchmarks/study_fem.py --locking`` prints both side by side.
 """
+
 from __future__ import annotations
 
 import math
@@ -21,8 +22,9 @@ from .model import build_mesh
 __all__ = ["displacement_only_stiffness"]
 
 
-def displacement_only_stiffness(nu: float, *, order: int = 1, grading: float = 1.0, domain: float = 2.0**10,
-                                h_min: float = 1e-4) -> float:
+def displacement_only_stiffness(
+    nu: float, *, order: int = 1, grading: float = 1.0, domain: float = 2.0**10, h_min: float = 1e-4
+) -> float:
     """Punch stiffness K / (2 E* a) of a homogeneous body with displacement-only elements of
     ``order`` 1 or 2 (E = 1, a = 1); 1 means exact (up to mesh and domain truncation)."""
     if not 0.0 <= nu < 0.5:

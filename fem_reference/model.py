@@ -17,6 +17,7 @@ K_b = E / (3 (1 - 2 nu)), and the pressure p = -K_b tr eps is the mixed unknown:
 nu = 1/2, which is then exact and does not lock.  (Carrying p = -lambda tr eps instead needs
 1/lambda, which is infinite at nu = 0: dropping it there solves an incompressible body.)
 """
+
 from __future__ import annotations
 
 import math
@@ -38,8 +39,20 @@ from skfem import (
     asm,
 )
 
-__all__ = ["KERNELS", "Material", "Model", "assemble", "bases", "build_mesh", "build_tensor_mesh", "global_matrix",
-           "local_saddle_matrices", "nested_dissection", "saddle_matrix", "solve_unit_approach"]
+__all__ = [
+    "KERNELS",
+    "Material",
+    "Model",
+    "assemble",
+    "bases",
+    "build_mesh",
+    "build_tensor_mesh",
+    "global_matrix",
+    "local_saddle_matrices",
+    "nested_dissection",
+    "saddle_matrix",
+    "solve_unit_approach",
+]
 
 
 @dataclass(frozen=True)
@@ -54,8 +67,15 @@ class Material:
         return 1.0 / (1.0 - self.k) if self.k > 0 else 1.0
 
 
-def build_mesh(*, domain: float, grading: float, h_min: float, h_max_near: float = 0.25,
-               far_grading: float | None = None, near_radius: float = 2.0) -> MeshTri:
+def build_mesh(
+    *,
+    domain: float,
+    grading: float,
+    h_min: float,
+    h_max_near: float = 0.25,
+    far_grading: float | None = None,
+    near_radius: float = 2.0,
+) -> MeshTri:
     """A triangle mesh of [0, domain]^2 in (r, z) for a homogeneous body, refined
     (red-green-blue, longest edge) until every element's diameter is at most ``grading`` times
     its distance from the punch edge (1, 0), at most ``h_max_near`` within radius 2 of the axis
@@ -112,7 +132,7 @@ def build_tensor_mesh(*, domain: float, ratio: float, h_min: float, mapping: flo
     zeta_max = domain ** (1.0 / mapping)
     zeta = _geometric(h_min, domain, ratio) ** (1.0 / mapping)
     zs = np.unique(np.concatenate([zeta, _geometric(h_min, zeta[1], ratio)]))
-    zs = np.append(zs[zs < zeta_max * (1 - 1e-9)], zeta_max)   # see build_mesh: no sliver layer
+    zs = np.append(zs[zs < zeta_max * (1 - 1e-9)], zeta_max)  # see build_mesh: no sliver layer
     return MeshTri.init_tensor(rs, zs)
 
 
@@ -121,15 +141,15 @@ class Model:
     mesh: MeshTri
     ub: Basis
     pb: Basis
-    M: sp.csr_matrix          # the saddle-point matrix [[A, B^T], [B, -C]] (per radian)
-    fixed: np.ndarray         # constrained dofs of the combined vector
-    punch: np.ndarray         # u_z dofs on the face (prescribed = d)
+    M: sp.csr_matrix  # the saddle-point matrix [[A, B^T], [B, -C]] (per radian)
+    fixed: np.ndarray  # constrained dofs of the combined vector
+    punch: np.ndarray  # u_z dofs on the face (prescribed = d)
     material: Material
 
 
 def _forms(mat: Material):
     k, nu, m = mat.k, mat.nu, mat.mapping
-    inv_bulk_coef = 3 * (1 - 2 * nu)          # E / K_b: 0 at nu = 1/2, 9 at nu -> -1
+    inv_bulk_coef = 3 * (1 - 2 * nu)  # E / K_b: 0 at nu = 1/2, 9 at nu -> -1
 
     def geometry(w):
         r = w.x[0]
@@ -178,8 +198,9 @@ KERNELS = ("vectorised", "scikit-fem")
 _DEVIATORIC = np.array([[4, -2, -2, 0], [-2, 4, -2, 0], [-2, -2, 4, 0], [0, 0, 0, 3]]) / 3.0
 
 
-def bases(mesh: MeshTri, order: int, intorder: int | None = None, elements: np.ndarray | None = None
-          ) -> tuple[Basis, Basis]:
+def bases(
+    mesh: MeshTri, order: int, intorder: int | None = None, elements: np.ndarray | None = None
+) -> tuple[Basis, Basis]:
     """Taylor-Hood displacement and pressure bases of degree ``order`` and ``order`` - 1."""
     eu, ep = _ORDERS[order]
     # 2p: exact for the polynomial part of the integrands (degree 2(p-1) + 1 with the weight r);
@@ -200,7 +221,7 @@ def local_saddle_matrices(ub: Basis, pb: Basis, mat: Material) -> tuple[np.ndarr
     weights mu r J dx are evaluated once, and the n^2 pairs come from one batched matrix
     product per element instead of one Python call of the form per pair."""
     k, nu, m = mat.k, mat.nu, mat.mapping
-    r, zeta = ub.mapping.F(ub.X, tind=ub.tind)                   # quadrature points (elements, points)
+    r, zeta = ub.mapping.F(ub.X, tind=ub.tind)  # quadrature points (elements, points)
     J = m * zeta ** (m - 1) if m != 1 else np.ones_like(zeta)
     E = (zeta**m) ** k if k != 0 else np.ones_like(zeta)
     rJdx = r * J * ub.dx
@@ -215,8 +236,8 @@ def local_saddle_matrices(ub: Basis, pb: Basis, mat: Material) -> tuple[np.ndarr
         S[a, 3] = g[0][1] / J + g[1][0]
     DS = np.einsum("kl,alnq->ankq", _DEVIATORIC, S).reshape(ub.Nbfun, nel, 4 * nq)
     WS = (S * (mu * rJdx)).transpose(0, 2, 1, 3).reshape(ub.Nbfun, nel, 4 * nq)
-    A = np.matmul(WS.transpose(1, 0, 2), DS.transpose(1, 2, 0))    # (elements, nu, nu)
-    psi = np.stack([np.asarray(f) for (f,) in pb.basis])          # (np, elements, points)
+    A = np.matmul(WS.transpose(1, 0, 2), DS.transpose(1, 2, 0))  # (elements, nu, nu)
+    psi = np.stack([np.asarray(f) for (f,) in pb.basis])  # (np, elements, points)
     trace = S[:, 0] + S[:, 1] + S[:, 2]
     B = -np.einsum("ieq,aeq->eia", psi * rJdx, trace)
     inv_bulk_coef = 3 * (1 - 2 * nu)
@@ -237,9 +258,15 @@ def global_matrix(Ke: np.ndarray, dofs: np.ndarray, n: int) -> sp.csr_matrix:
     return sp.csr_matrix((Ke.ravel(), (rows.ravel(), cols.ravel())), shape=(n, n))
 
 
-def saddle_matrix(mesh: MeshTri, mat: Material, *, order: int = 2, intorder: int | None = None,
-                  elements: np.ndarray | None = None, kernels: str = "vectorised"
-                  ) -> tuple[sp.csr_matrix, Basis, Basis]:
+def saddle_matrix(
+    mesh: MeshTri,
+    mat: Material,
+    *,
+    order: int = 2,
+    intorder: int | None = None,
+    elements: np.ndarray | None = None,
+    kernels: str = "vectorised",
+) -> tuple[sp.csr_matrix, Basis, Basis]:
     """[[A, B^T], [B, -C]] over all elements, or only over ``elements`` (same global size)."""
     ub, pb = bases(mesh, order, intorder, elements)
     if kernels == "vectorised":
@@ -252,8 +279,15 @@ def saddle_matrix(mesh: MeshTri, mat: Material, *, order: int = 2, intorder: int
     return cast(sp.csr_matrix, sp.bmat([[A, B.T], [B, -C]], format="csr")), ub, pb
 
 
-def assemble(mesh: MeshTri, mat: Material, *, order: int = 2, intorder: int | None = None,
-             face_radius: float = 1.0, kernels: str = "vectorised") -> Model:
+def assemble(
+    mesh: MeshTri,
+    mat: Material,
+    *,
+    order: int = 2,
+    intorder: int | None = None,
+    face_radius: float = 1.0,
+    kernels: str = "vectorised",
+) -> Model:
     M, ub, pb = saddle_matrix(mesh, mat, order=order, intorder=intorder, kernels=kernels)
     L = mesh.p[0].max()
     Z = mesh.p[1].max()
@@ -289,7 +323,7 @@ def nested_dissection(dofs: np.ndarray, mesh: MeshTri, *, pressure_from: int, le
     stack: list = [np.arange(mesh.t.shape[1])]
     while stack:
         item = stack.pop()
-        if isinstance(item, tuple):                               # a separator, after its halves
+        if isinstance(item, tuple):  # a separator, after its halves
             out.append(item[0])
             continue
         E = item
@@ -301,7 +335,7 @@ def nested_dissection(dofs: np.ndarray, mesh: MeshTri, *, pressure_from: int, le
                 median = np.median(c)
                 vertices = mesh.p[ax, mesh.t[:, E]]
                 gap = np.abs(vertices - median)
-                left = c < vertices[gap == gap.min()].min()             # the mesh line nearest the median
+                left = c < vertices[gap == gap.min()].min()  # the mesh line nearest the median
                 if left.all() or not left.any():
                     left = c < median
                     if left.all() or not left.any():
@@ -311,10 +345,10 @@ def nested_dissection(dofs: np.ndarray, mesh: MeshTri, *, pressure_from: int, le
                 right = local[:, ~left]
                 sep = np.unique(right[mark[right] == stamp])
                 sep = sep[~taken[sep]]
-                score = len(sep) * (1 + 2 * abs(left.mean() - 0.5))   # small and balanced
+                score = len(sep) * (1 + 2 * abs(left.mean() - 0.5))  # small and balanced
                 if best is None or score < best[0]:
                     best = (score, left, sep)
-        if best is None:                                          # a leaf
+        if best is None:  # a leaf
             own = np.unique(local)
             own = own[~taken[own]]
             taken[own] = True
@@ -331,8 +365,9 @@ def nested_dissection(dofs: np.ndarray, mesh: MeshTri, *, pressure_from: int, le
 SOLVE_TOLERANCE = 1e-8
 
 
-def solve_unit_approach(model: Model, M: sp.csr_matrix | None = None, *,
-                        kernels: str = "vectorised") -> tuple[np.ndarray, float]:
+def solve_unit_approach(
+    model: Model, M: sp.csr_matrix | None = None, *, kernels: str = "vectorised"
+) -> tuple[np.ndarray, float]:
     """The combined solution vector (u, p) for u_z = 1 on the face, and the relative residual
     of the linear solve (the best of the factorisations tried; above :data:`SOLVE_TOLERANCE`
     the caller reports the result as not converged)."""
@@ -342,8 +377,9 @@ def solve_unit_approach(model: Model, M: sp.csr_matrix | None = None, *,
     x[model.punch] = 1.0
     free = np.setdiff1d(np.arange(n), model.fixed)
     if kernels == "vectorised":
-        order = nested_dissection(np.vstack([model.ub.element_dofs, model.pb.element_dofs + model.ub.N]), model.mesh,
-                                  pressure_from=model.ub.N)
+        order = nested_dissection(
+            np.vstack([model.ub.element_dofs, model.pb.element_dofs + model.ub.N]), model.mesh, pressure_from=model.ub.N
+        )
         position = np.empty(n, dtype=np.int64)
         position[order] = np.arange(n)
         free = free[np.argsort(position[free], kind="stable")]
@@ -365,7 +401,7 @@ def solve_unit_approach(model: Model, M: sp.csr_matrix | None = None, *,
     for permc, threshold, symmetric in attempts:
         try:
             lu = spla.splu(A, permc_spec=permc, options={"DiagPivotThresh": threshold, "SymmetricMode": symmetric})
-        except RuntimeError:                                      # an exactly zero pivot
+        except RuntimeError:  # an exactly zero pivot
             continue
         y = lu.solve(rhs)
         r = float(np.linalg.norm(A @ y - rhs) / np.linalg.norm(rhs))
@@ -374,7 +410,9 @@ def solve_unit_approach(model: Model, M: sp.csr_matrix | None = None, *,
         if residual < SOLVE_TOLERANCE:
             break
     if best is None:
-        raise FloatingPointError("fem_reference: every factorisation of the saddle-point matrix met a zero pivot "
-                                 "or produced no finite solution (a singular system: check the material and mesh)")
+        raise FloatingPointError(
+            "fem_reference: every factorisation of the saddle-point matrix met a zero pivot "
+            "or produced no finite solution (a singular system: check the material and mesh)"
+        )
     x[free] = best
     return x, residual

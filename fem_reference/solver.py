@@ -15,6 +15,7 @@ the change, scaled by the measured per-degree error ratio, plus the domain trunc
 the relative errors of K, F_A and d_c (:func:`error_estimates`; ``Result.error_bars``,
 ``accuracy_estimate`` their largest).
 """
+
 from __future__ import annotations
 
 import dataclasses
@@ -96,8 +97,9 @@ class FemSettings:
         check_choice("fem.kernels", self.kernels, KERNELS)
         object.__setattr__(self, "grading", check_real("fem.grading", self.grading, lo=0.05, hi=4.0))
         object.__setattr__(self, "order", check_int("fem.order", self.order, lo=2, hi=4))
-        object.__setattr__(self, "domain_radius",
-                           check_real("fem.domain_radius", self.domain_radius, lo=16.0, hi=2.0**40))
+        object.__setattr__(
+            self, "domain_radius", check_real("fem.domain_radius", self.domain_radius, lo=16.0, hi=2.0**40)
+        )
         object.__setattr__(self, "h_min", check_real("fem.h_min", self.h_min, lo=1e-12, hi=0.1))
         object.__setattr__(self, "vce_radius", check_real("fem.vce_radius", self.vce_radius, lo=0.01, hi=0.5))
 
@@ -106,9 +108,9 @@ class FemSettings:
 class UnitSolution:
     """Dimensionless results for a = 1, unit modulus scale, d = 1."""
 
-    stiffness: float           # K^
+    stiffness: float  # K^
     stiffness_reaction: float  # K^ from the reaction force (a check on the energy form)
-    dK_vce: float              # dK^/da by the stiffness derivative
+    dK_vce: float  # dK^/da by the stiffness derivative
     dK_compliance: float | None  # dK^/da by re-solving on moved meshes (when asked)
     dofs: int
     elements: int
@@ -116,7 +118,7 @@ class UnitSolution:
     mesh: MeshTri | None = None
     model: Model | None = None
     x: np.ndarray | None = None
-    residual: float = 0.0      # the largest relative residual of the linear solves
+    residual: float = 0.0  # the largest relative residual of the linear solves
 
 
 def write_fields(path: str, u: UnitSolution, *, radius: float, approach: float, modulus_scale: float) -> None:
@@ -133,8 +135,7 @@ def write_fields(path: str, u: UnitSolution, *, radius: float, approach: float, 
     uz = x[model.ub.nodal_dofs[1]] * approach
     p = x[nu_dofs + model.pb.nodal_dofs[0]] * approach * modulus_scale
     pts = np.column_stack([mesh.p[0] * radius, (mesh.p[1] ** m) * radius])
-    meshio.write(path, meshio.Mesh(pts, [("triangle", mesh.t.T)],
-                                   point_data={"u_r": ur, "u_z": uz, "pressure": p}))
+    meshio.write(path, meshio.Mesh(pts, [("triangle", mesh.t.T)], point_data={"u_r": ur, "u_z": uz, "pressure": p}))
 
 
 def _energy(M, x) -> float:
@@ -165,17 +166,23 @@ def build(material: Material, settings: FemSettings) -> MeshTri:
     then 1e-2 off (nu = 0.3: 7.8e-5 at grading 2.5, 1.4e-2 at 3) and converges too slowly in
     the degree for the error estimate; hence grading <= 2 there."""
     if material.mapping == 1.0 and settings.grading > MAX_ISOTROPIC_GRADING:
-        raise SceneError("fem.grading", f"a homogeneous body's mesh needs grading <= {MAX_ISOTROPIC_GRADING:g} "
-                         f"(coarser ones leave the punch edge unresolved); got {settings.grading:g}")
+        raise SceneError(
+            "fem.grading",
+            f"a homogeneous body's mesh needs grading <= {MAX_ISOTROPIC_GRADING:g} "
+            f"(coarser ones leave the punch edge unresolved); got {settings.grading:g}",
+        )
     if material.mapping != 1.0:
-        return build_tensor_mesh(domain=settings.domain_radius, ratio=1.0 + settings.grading, h_min=settings.h_min,
-                                 mapping=material.mapping)
-    return build_mesh(domain=settings.domain_radius, grading=settings.grading, h_min=settings.h_min,
-                      h_max_near=settings.grading)
+        return build_tensor_mesh(
+            domain=settings.domain_radius, ratio=1.0 + settings.grading, h_min=settings.h_min, mapping=material.mapping
+        )
+    return build_mesh(
+        domain=settings.domain_radius, grading=settings.grading, h_min=settings.h_min, h_max_near=settings.grading
+    )
 
 
-def unit_solution(material: Material, settings: FemSettings, *, energy_release: bool = True,
-                  mesh: MeshTri | None = None) -> UnitSolution:
+def unit_solution(
+    material: Material, settings: FemSettings, *, energy_release: bool = True, mesh: MeshTri | None = None
+) -> UnitSolution:
     """The unit problem on ``mesh`` (default: :func:`build` of ``settings``)."""
     t0 = time.perf_counter()
     log.info("meshing (grading %g)", settings.grading)
@@ -186,11 +193,19 @@ def unit_solution(material: Material, settings: FemSettings, *, energy_release: 
     x, residual = solve_unit_approach(model, kernels=settings.kernels)
     t2 = time.perf_counter()
     Mx = model.M @ x
-    K = 2 * math.pi * float(np.add.reduce(x * Mx))            # the pairwise sum of _energy
+    K = 2 * math.pi * float(np.add.reduce(x * Mx))  # the pairwise sum of _energy
     K_react = 2 * math.pi * float(np.add.reduce(Mx[model.punch]))
     if not energy_release:
-        return UnitSolution(K, K_react, math.nan, None, model.M.shape[0], mesh.t.shape[1],
-                            {"mesh": t1 - t0, "solve": t2 - t1}, residual=residual)
+        return UnitSolution(
+            K,
+            K_react,
+            math.nan,
+            None,
+            model.M.shape[0],
+            mesh.t.shape[1],
+            {"mesh": t1 - t0, "solve": t2 - t1},
+            residual=residual,
+        )
     delta = 1e-4
     # only elements with a moved vertex change, so dM/da is assembled on those alone
     q = _shift(mesh, settings.vce_radius, material.mapping)
@@ -202,25 +217,30 @@ def unit_solution(material: Material, settings: FemSettings, *, energy_release: 
         xe = x[dofs.T]
         dK_vce = 2 * math.pi * float(np.add.reduce(np.einsum("ea,eab,eb->e", xe, Kp - Km, xe))) / (2 * delta)
     else:
-        Mp, _, _ = saddle_matrix(_moved(mesh, delta, q), material, order=settings.order, elements=moved,
-                                 kernels=settings.kernels)
-        Mm, _, _ = saddle_matrix(_moved(mesh, -delta, q), material, order=settings.order, elements=moved,
-                                 kernels=settings.kernels)
+        Mp, _, _ = saddle_matrix(
+            _moved(mesh, delta, q), material, order=settings.order, elements=moved, kernels=settings.kernels
+        )
+        Mm, _, _ = saddle_matrix(
+            _moved(mesh, -delta, q), material, order=settings.order, elements=moved, kernels=settings.kernels
+        )
         dK_vce = 2 * math.pi * _energy(Mp - Mm, x) / (2 * delta)
     t3 = time.perf_counter()
     timings = {"mesh": t1 - t0, "solve": t2 - t1, "energy_release": t3 - t2}
     dK_c = None
     if settings.compliance_check:
-        plus = assemble(_moved(mesh, delta, q), material, order=settings.order, face_radius=1 + delta,
-                        kernels=settings.kernels)
-        minus = assemble(_moved(mesh, -delta, q), material, order=settings.order, face_radius=1 - delta,
-                         kernels=settings.kernels)
+        plus = assemble(
+            _moved(mesh, delta, q), material, order=settings.order, face_radius=1 + delta, kernels=settings.kernels
+        )
+        minus = assemble(
+            _moved(mesh, -delta, q), material, order=settings.order, face_radius=1 - delta, kernels=settings.kernels
+        )
         (xp, rp), (xm, rm) = (solve_unit_approach(m, kernels=settings.kernels) for m in (plus, minus))
         residual = max(residual, rp, rm)
         dK_c = 2 * math.pi * (_energy(plus.M, xp) - _energy(minus.M, xm)) / (2 * delta)
         timings["compliance_check"] = time.perf_counter() - t3
-    return UnitSolution(K, K_react, dK_vce, dK_c, model.M.shape[0], mesh.t.shape[1], timings, mesh, model, x,
-                        residual=residual)
+    return UnitSolution(
+        K, K_react, dK_vce, dK_c, model.M.shape[0], mesh.t.shape[1], timings, mesh, model, x, residual=residual
+    )
 
 
 # The error estimate compares the solution with the one of the neighbouring polynomial degree on
@@ -288,9 +308,11 @@ def _material(scene: Scene) -> tuple[Material, float]:
         return Material(0.0, m.poisson_ratio), m.youngs_modulus
     if isinstance(m, PowerLawGraded):
         if m.exponent < 0:
-            raise SceneError("material.exponent",
-                             f"the FEM covers 0 <= k < 1 only: nu = 1/(2+k) > 1/2 for k < 0 is not a positive definite "
-                             f"material (got k = {m.exponent:g})")
+            raise SceneError(
+                "material.exponent",
+                f"the FEM covers 0 <= k < 1 only: nu = 1/(2+k) > 1/2 for k < 0 is not a positive definite "
+                f"material (got k = {m.exponent:g})",
+            )
         return Material(m.exponent, m.poisson_ratio), m.surface_modulus * (a / m.reference_depth) ** m.exponent
     raise SceneError("material", f"unsupported material {type(m).__name__}")  # pragma: no cover
 
@@ -317,7 +339,7 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
     w = scene.adhesion.work_of_adhesion
     u = unit_solution(mat, settings)
     K = modulus_scale * a * u.stiffness
-    dK = modulus_scale * u.dK_vce                      # d(S a K^(a))/da with K^ computed at a = 1 (scale-free)
+    dK = modulus_scale * u.dK_vce  # d(S a K^(a))/da with K^ computed at a = 1 (scale-free)
     if w > 0:
         d_c = -math.sqrt(4 * math.pi * a * w / dK)
     else:
@@ -331,22 +353,30 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
     residual = max(u.residual, comparison.residual)
     solved = residual < SOLVE_TOLERANCE
     if not solved:
-        msgs.append(f"the saddle-point solve left a relative residual {residual:.1e} > {SOLVE_TOLERANCE:g} "
-                    "after every factorisation: the numbers are not to be trusted")
+        msgs.append(
+            f"the saddle-point solve left a relative residual {residual:.1e} > {SOLVE_TOLERANCE:g} "
+            "after every factorisation: the numbers are not to be trusted"
+        )
     if u.dK_compliance is not None:
         agree = abs(u.dK_vce / u.dK_compliance - 1)
         if agree > 1e-3:
             msgs.append(f"energy release rate: stiffness and compliance derivatives differ by {agree:.2e}")
     if scene.outputs.fields:
         if not settings.fields_path:
-            raise SceneError("fem.fields_path",
-                             "the scene asks for fields: give FemSettings(fields_path=...) (.vtu or .xdmf)")
+            raise SceneError(
+                "fem.fields_path", "the scene asks for fields: give FemSettings(fields_path=...) (.vtu or .xdmf)"
+            )
         write_fields(settings.fields_path, u, radius=a, approach=d_c, modulus_scale=modulus_scale)
     curve = Curve(np.array([0.0, d_c, d_c]), np.array([0.0, -F_A, 0.0]), np.array([math.pi * a * a] * 2 + [0.0]))
     if callback is not None:
         callback(d_c, -F_A, math.pi * a * a)
-    log.info("fem_reference: %d dofs, K^ = %.10g, dK^ vce %.10g compliance %s", u.dofs, u.stiffness, u.dK_vce,
-             "not computed" if u.dK_compliance is None else f"{u.dK_compliance:.10g}")
+    log.info(
+        "fem_reference: %d dofs, K^ = %.10g, dK^ vce %.10g compliance %s",
+        u.dofs,
+        u.stiffness,
+        u.dK_vce,
+        "not computed" if u.dK_compliance is None else f"{u.dK_compliance:.10g}",
+    )
     return Result(
         method="fem_reference",
         pulloff_force=F_A,
@@ -361,24 +391,36 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
         timings=timings,
         accuracy_estimate=max(est.values()),
         messages=tuple(msgs),
-        error_bars={q: ErrorBar(v, f"degree {settings.order} against {comparison_order(settings.order)} on the same "
-                                   f"mesh, scaled by the per-degree ratio, plus the truncation "
-                                   f"1/{settings.domain_radius:g} "
-                                   "(bounds the error on every tested case: tests/test_fem_reference.py)")
-                    for q, v in est.items()},
+        error_bars={
+            q: ErrorBar(
+                v,
+                f"degree {settings.order} against {comparison_order(settings.order)} on the same "
+                f"mesh, scaled by the per-degree ratio, plus the truncation "
+                f"1/{settings.domain_radius:g} "
+                "(bounds the error on every tested case: tests/test_fem_reference.py)",
+            )
+            for q, v in est.items()
+        },
         stats=SolverStats(linear_solves=2 + (u.dK_compliance is not None) * 2, unknowns=int(u.dofs)),
         face_area=None,
         discretisation="mesh",
-        info={"dofs": u.dofs, "elements": u.elements, "dK_da_vce": modulus_scale * u.dK_vce,
-              "dK_da_compliance": None if u.dK_compliance is None else modulus_scale * u.dK_compliance,
-              "stiffness_reaction": modulus_scale * a * u.stiffness_reaction, "grading": settings.grading,
-              "order": settings.order, "error_estimates": est, "comparison_order": comparison_order(settings.order),
-              "comparison_stiffness": modulus_scale * a * comparison.stiffness,
-              "comparison_dK_da": modulus_scale * comparison.dK_vce,
-              # continuum identities the discrete solution misses: K ~ a^(1+k) (so a K'/((1+k) K) = 1)
-              # and the reaction equals the energy form; diagnostics, not error bounds
-              "scaling_defect": abs(u.dK_vce / ((1 + mat.k) * u.stiffness) - 1),
-              "reaction_defect": abs(u.stiffness_reaction / u.stiffness - 1)},
+        info={
+            "dofs": u.dofs,
+            "elements": u.elements,
+            "dK_da_vce": modulus_scale * u.dK_vce,
+            "dK_da_compliance": None if u.dK_compliance is None else modulus_scale * u.dK_compliance,
+            "stiffness_reaction": modulus_scale * a * u.stiffness_reaction,
+            "grading": settings.grading,
+            "order": settings.order,
+            "error_estimates": est,
+            "comparison_order": comparison_order(settings.order),
+            "comparison_stiffness": modulus_scale * a * comparison.stiffness,
+            "comparison_dK_da": modulus_scale * comparison.dK_vce,
+            # continuum identities the discrete solution misses: K ~ a^(1+k) (so a K'/((1+k) K) = 1)
+            # and the reaction equals the energy form; diagnostics, not error bounds
+            "scaling_defect": abs(u.dK_vce / ((1 + mat.k) * u.stiffness) - 1),
+            "reaction_defect": abs(u.stiffness_reaction / u.stiffness - 1),
+        },
     )
 
 

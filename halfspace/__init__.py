@@ -4,6 +4,7 @@ the periodic image sum, the lattice symbol), a separately derived point-collocat
 (:mod:`halfspace.collocation`) and the FFT convolution operator u = C p.
 
 Neither BEM imports the other; both take their discretisation of the half-space from here."""
+
 from .collocation import collocated_graded_influence, collocated_influence, square_lattice_zeta
 from .kernel import (
     MADELUNG_SQUARE,
@@ -18,6 +19,19 @@ from .kernel import (
 )
 from .operator import HalfSpaceOperator, default_workers
 
-__all__ = ["love_square_integral", "love_influence", "love_influence_periodic", "padded_shape", "graded_square_integral",
-           "graded_influence", "lattice_symbol", "point_kernel_transform", "MADELUNG_SQUARE", "HalfSpaceOperator",
-           "default_workers", "collocated_influence", "collocated_graded_influence", "square_lattice_zeta"]
+__all__ = [
+    "love_square_integral",
+    "love_influence",
+    "love_influence_periodic",
+    "padded_shape",
+    "graded_square_integral",
+    "graded_influence",
+    "lattice_symbol",
+    "point_kernel_transform",
+    "MADELUNG_SQUARE",
+    "HalfSpaceOperator",
+    "default_workers",
+    "collocated_influence",
+    "collocated_graded_influence",
+    "square_lattice_zeta",
+]

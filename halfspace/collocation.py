@@ -33,6 +33,7 @@ moment, (Delta^2 / 24) laplacian(r^-(1+k)) Delta^2, a relative (1+k)^2 Delta^2 /
 give different stiffnesses, each converging to the continuum, so agreement between solvers
 using different ones checks both.
 """
+
 from __future__ import annotations
 
 import math
@@ -81,15 +82,17 @@ def _point_layout(nx: int, ny: int, spacing: float, k: float, padded: tuple[int,
     return _offset_layout(point, nx, ny, spacing, padded)
 
 
-def collocated_influence(nx: int, ny: int, spacing: float, E_star: float,
-                         padded: tuple[int, int] | None = None) -> np.ndarray:
+def collocated_influence(
+    nx: int, ny: int, spacing: float, E_star: float, padded: tuple[int, int] | None = None
+) -> np.ndarray:
     """Point-collocated Boussinesq coefficients of a homogeneous half-space (u = C p), laid
     out like :func:`halfspace.kernel.love_influence`."""
     return _point_layout(nx, ny, spacing, 0.0, padded) / (math.pi * E_star)
 
 
-def collocated_graded_influence(nx: int, ny: int, spacing: float, E0: float, c0: float, k: float,
-                                padded: tuple[int, int] | None = None) -> np.ndarray:
+def collocated_graded_influence(
+    nx: int, ny: int, spacing: float, E0: float, c0: float, k: float, padded: tuple[int, int] | None = None
+) -> np.ndarray:
     """Point-collocated coefficients of a power-law graded half-space (w = A_k P / r^(1+k)),
     laid out like :func:`halfspace.kernel.graded_influence`."""
     from contact_scene.theory import graded_green_coefficient

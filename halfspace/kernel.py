@@ -1,12 +1,22 @@
 """Influence coefficients of square elements on an elastic half-space."""
+
 from __future__ import annotations
 
 import math
 
 import numpy as np
 
-__all__ = ["love_square_integral", "love_influence", "love_influence_periodic", "padded_shape", "graded_square_integral",
-           "graded_influence", "lattice_symbol", "point_kernel_transform", "MADELUNG_SQUARE"]
+__all__ = [
+    "love_square_integral",
+    "love_influence",
+    "love_influence_periodic",
+    "padded_shape",
+    "graded_square_integral",
+    "graded_influence",
+    "lattice_symbol",
+    "point_kernel_transform",
+    "MADELUNG_SQUARE",
+]
 
 
 def _f(X, Y):
@@ -48,7 +58,9 @@ def _offset_layout(integral, nx: int, ny: int, spacing: float, padded: tuple[int
     return K
 
 
-def love_influence(nx: int, ny: int, spacing: float, E_star: float, padded: tuple[int, int] | None = None) -> np.ndarray:
+def love_influence(
+    nx: int, ny: int, spacing: float, E_star: float, padded: tuple[int, int] | None = None
+) -> np.ndarray:
     """Influence coefficients of a homogeneous half-space (u = C p), in the layout of
     :func:`_offset_layout`."""
     return _offset_layout(love_square_integral, nx, ny, spacing, padded) / (math.pi * E_star)
@@ -87,14 +99,15 @@ def love_influence_periodic(n: int, spacing: float, E_star: float, *, images: in
                     total += love_square_integral(X + a * L, Y + b * L, spacing / 2)
         done = M
         sums.append(total - total.mean())
-    r1 = 2.0 * sums[1] - sums[0]          # C + a/M + b/M^2  ->  C - b/(2 M^2)
-    r2 = 2.0 * sums[2] - sums[1]          #                  ->  C - b/(8 M^2)
+    r1 = 2.0 * sums[1] - sums[0]  # C + a/M + b/M^2  ->  C - b/(2 M^2)
+    r2 = 2.0 * sums[2] - sums[1]  #                  ->  C - b/(8 M^2)
     return (4.0 * r2 - r1) / 3.0 / (math.pi * E_star)
 
 
 def padded_shape(nx: int, ny: int) -> tuple[int, int]:
     """The smallest FFT-friendly sizes that hold a linear convolution of an nx x ny grid."""
     import scipy.fft as sfft
+
     return (sfft.next_fast_len(2 * nx - 1, real=True), sfft.next_fast_len(2 * ny - 1, real=True))
 
 
@@ -119,12 +132,13 @@ def graded_square_integral(x, y, half_width: float, k: float):
         ah = np.abs(h)
         safe = np.where(ah > 0, ah, 1.0)
         term = np.sign(h) * safe ** (1 - k) * (G(s2 / safe) - G(s1 / safe))
-        total += np.where(ah > 0, term, 0.0)   # the edge through the field point contributes nothing
+        total += np.where(ah > 0, term, 0.0)  # the edge through the field point contributes nothing
     return total / (1 - k)
 
 
-def graded_influence(nx: int, ny: int, spacing: float, E0: float, c0: float, k: float,
-                     padded: tuple[int, int] | None = None) -> np.ndarray:
+def graded_influence(
+    nx: int, ny: int, spacing: float, E0: float, c0: float, k: float, padded: tuple[int, int] | None = None
+) -> np.ndarray:
     """Influence coefficients of a power-law graded half-space (w = A_k P / r^(1+k)), laid out
     like :func:`love_influence`."""
     from contact_scene.theory import graded_green_coefficient
@@ -167,6 +181,8 @@ def lattice_symbol(padded: tuple[int, int], spacing: float, transform, *, terms:
             qy = ky + 2.0 * math.pi * my / h
             q = np.hypot(qx, qy)
             with np.errstate(divide="ignore", invalid="ignore"):
-                total += np.where(q > 0, transform(np.where(q > 0, q, 1.0)) * sx * np.sinc(qy * h / (2.0 * math.pi)), 0.0)
+                total += np.where(
+                    q > 0, transform(np.where(q > 0, q, 1.0)) * sx * np.sinc(qy * h / (2.0 * math.pi)), 0.0
+                )
     total[0, 0] = np.inf
     return total

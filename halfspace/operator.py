@@ -1,4 +1,5 @@
 """The half-space operator u = C p as an FFT convolution."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -32,8 +33,8 @@ class HalfSpaceOperator:
     kernel: np.ndarray
     shape: tuple[int, int]
     workers: int = 1
-    periodic: bool = False      # circular convolution over the grid itself (kernel shape = grid shape)
-    _symbol: np.ndarray = field(init=False, repr=False)   # set once in __post_init__
+    periodic: bool = False  # circular convolution over the grid itself (kernel shape = grid shape)
+    _symbol: np.ndarray = field(init=False, repr=False)  # set once in __post_init__
 
     def __post_init__(self):
         nx, ny = self.shape

@@ -7,6 +7,7 @@ moves one element by the range), which bounds force differences by about that re
 amount; the finite-range and zero-range tolerances come from the sweeps in
 benchmarks/study_energy.py (quoted at each test).
 """
+
 import dataclasses
 import math
 
@@ -22,8 +23,9 @@ W = 0.02
 
 
 def circle(radius=1.0, work=W, range_=None, potential="exponential", **kw):
-    return cs.Scene(cs.Indenter(cs.Circle(radius)), cs.Homogeneous(1.0, 0.0),
-                    cs.Adhesion(work, range_, potential), **kw)
+    return cs.Scene(
+        cs.Indenter(cs.Circle(radius)), cs.Homogeneous(1.0, 0.0), cs.Adhesion(work, range_, potential), **kw
+    )
 
 
 def rho_for(ratio, a=1.0, work=W, E=1.0):
@@ -33,12 +35,13 @@ def rho_for(ratio, a=1.0, work=W, E=1.0):
 
 # -- the three minimisers ----------------------------------------------------
 
+
 @pytest.mark.parametrize("kind", ["exponential", "maugis_dugdale"])
 @pytest.mark.parametrize("adhesive,d", [(False, 0.05), (True, -0.12)])
 def test_three_minimisers_reach_the_same_minimum(kind, adhesive, d):
     sc = circle(range_=rho_for(0.3), potential=kind)
     prob = be.build_problem(sc, 1 / 6, be.Potential(W, rho_for(0.3), kind))
-    U0 = np.zeros(prob.padded)   # attached start: the face on the wall
+    U0 = np.zeros(prob.padded)  # attached start: the face on the wall
     out = {m: be.minimise(prob, U0, d, adhesive, method=m, gtol=1e-8) for m in ("lbfgsb", "pk", "cvxpy")}
     ref = out["cvxpy"]
     L = prob.potential.range
@@ -72,7 +75,7 @@ def test_pulloff_from_attached_branch_snaps_and_reports_process_zone():
     assert r.info["process_zone_per_element"] == pytest.approx(0.16 * 16)
     c = r.curve
     assert c.contact_area[0] == pytest.approx(r.info["face_elements"] / 16**2)
-    assert c.force[-1] > -0.05 * r.pulloff_force          # snapped: almost no tension left
+    assert c.force[-1] > -0.05 * r.pulloff_force  # snapped: almost no tension left
     assert r.detachment_approach < r.pulloff_approach < 0
     # finite range weakens the punch below Kendall (sqrt-like in l_c/a, see the zero-range test)
     FK = T.kendall_adhesion_force(E_star=1.0, radius=1.0, work=W)
@@ -101,10 +104,10 @@ def test_typed_stats_count_the_work_and_the_face():
     assert 40 // 3 <= st.events <= len(r.curve) - 1
     sq = cs.Scene(cs.Indenter(cs.Square(2.0)), cs.Homogeneous(1.0, 0.0), cs.Adhesion(W))
     z = be.solve(sq, be.ZeroRangeSettings(ratios=(0.32, 0.16, 0.08), rate=0.5, minimum_elements_per_radius=16))
-    assert z.discretisation == "extrapolated" and z.face_area is None     # forces scaled to the nominal face
+    assert z.discretisation == "extrapolated" and z.face_area is None  # forces scaled to the nominal face
     cells = [int(cs.rasterise(sq.indenter.shape, h).mask.sum()) for h in z.info["zero_range"]["spacings"]]
     assert z.stats.unknowns == sum(cells)
-    assert z.stats.linear_solves > z.info["minimisations"] > 0        # the sequence's, not the finest range's
+    assert z.stats.linear_solves > z.info["minimisations"] > 0  # the sequence's, not the finest range's
 
 
 def test_unresolved_process_zone_is_reported():
@@ -117,8 +120,9 @@ def test_unit_scaling():
     """Lengths x s, moduli x m, work x m s: forces x m s^2, approaches x s."""
     s, mscale = 1e-3, 1e6
     base = circle(range_=rho_for(0.16))
-    scaled = cs.Scene(cs.Indenter(cs.Circle(s)), cs.Homogeneous(mscale, 0.0),
-                      cs.Adhesion(W * mscale * s, rho_for(0.16) * s))
+    scaled = cs.Scene(
+        cs.Indenter(cs.Circle(s)), cs.Homogeneous(mscale, 0.0), cs.Adhesion(W * mscale * s, rho_for(0.16) * s)
+    )
     st = be.EnergySettings(grid=cs.Grid(elements_per_radius=12), minimiser="pk")
     r1, r2 = be.solve(base, st), be.solve(scaled, st)
     assert r2.pulloff_force / (mscale * s**2) == pytest.approx(r1.pulloff_force, rel=1e-8)
@@ -148,6 +152,7 @@ def test_bad_settings_are_refused():
 
 
 # -- finite range: grid convergence at fixed rho ----------------------------------
+
 
 def _finite_range(Ns):
     sc = circle(range_=rho_for(0.16))
@@ -181,6 +186,7 @@ def test_finite_range_converges_first_order_slow():
 
 # -- zero range: Kendall by Richardson extrapolation ------------------------------
 
+
 def test_richardson_recovers_a_known_limit():
     h = np.array([0.32, 0.16, 0.08])
     F = 2.0 - 0.7 * h**0.5
@@ -209,10 +215,10 @@ def test_zero_range_settings_need_three_ratios_to_fit_a_rate():
 
 @pytest.fixture(scope="module")
 def zero_range_circle():
-    return be.solve(circle())     # no range: the zero-range limit, default settings
+    return be.solve(circle())  # no range: the zero-range limit, default settings
 
 
-@pytest.mark.slow   # the default sequence down to l_c = 0.01 a: about 3 minutes on one core
+@pytest.mark.slow  # the default sequence down to l_c = 0.01 a: about 3 minutes on one core
 def test_zero_range_circle_reaches_kendall_within_one_percent(zero_range_circle):
     """Issue target 1 %; benchmarks/study_energy_zero_range.py measured CIRCLE_DEFAULT with the
     default ratios, and the estimate covers it."""
@@ -268,10 +274,10 @@ def test_continuation_is_needed_cold_start_falls_onto_the_detached_branch():
     sc = circle(range_=rho)
     st = be.EnergySettings(grid=cs.Grid(elements_per_radius=12))
     r = be.solve(sc, st)
-    d = r.pulloff_approach                            # attached in the pull, gap 5 rho from cold
+    d = r.pulloff_approach  # attached in the pull, gap 5 rho from cold
     prob = be.build_problem(sc, 1 / 12, be.Potential(W, rho))
     cold = be.minimise(prob, np.zeros(prob.padded), d, True)
-    warm = be.minimise(prob, np.zeros(prob.padded), 0.0, True)     # touching, then a short continuation
+    warm = be.minimise(prob, np.zeros(prob.padded), 0.0, True)  # touching, then a short continuation
     for x in np.linspace(0.0, d, 9)[1:]:
         warm = be.minimise(prob, warm.U, x, True)
     assert cold.converged and warm.converged

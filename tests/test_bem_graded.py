@@ -48,6 +48,7 @@ def test_graded_circle_stiffness_matches_eq34(k):
 
 # -- the calibrated criterion (bem_griffith.criterion) -------------------------
 
+
 def _circle(k):
     return cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, k), cs.Adhesion(1.0))
 
@@ -66,7 +67,8 @@ def homogeneous_circle():
 def _scaled_to_eq39(res, k):
     """F_A / F_A(Eq. 39), the force scaled to the nominal area (F ~ A^((3+k)/4)) as in the fit."""
     return T.force_at_nominal_area(res.pulloff_force, area=res.face_area, nominal_area=np.pi, k=k) / (
-        T.graded_adhesion_force(E0=1.0, c0=1.0, k=k, radius=1.0, work=1.0))
+        T.graded_adhesion_force(E0=1.0, c0=1.0, k=k, radius=1.0, work=1.0)
+    )
 
 
 @pytest.mark.parametrize("k", [-0.95, -0.5, 0.5, 0.95])
@@ -97,11 +99,13 @@ def test_calibrated_circle_follows_the_homogeneous_one(k, homogeneous_circle):
         g = bg.solve(_circle(k), st)
         h = homogeneous_circle[N]
         ratio = (g.pulloff_force / T.graded_adhesion_force(E0=1.0, c0=1.0, k=k, radius=1.0, work=1.0)) / (
-            h.pulloff_force / T.graded_adhesion_force(E0=1.0, c0=1.0, k=0.0, radius=1.0, work=1.0))
+            h.pulloff_force / T.graded_adhesion_force(E0=1.0, c0=1.0, k=0.0, radius=1.0, work=1.0)
+        )
         assert abs(ratio - 1) <= 0.5 / N + u / r
         # the approach is F / K: add the two stiffnesses' first-order errors (0.15 / N each, Eq. 34)
         d_ratio = (g.pulloff_approach / T.graded_critical_approach(E0=1.0, c0=1.0, k=k, radius=1.0, work=1.0)) / (
-            h.pulloff_approach / T.graded_critical_approach(E0=1.0, c0=1.0, k=0.0, radius=1.0, work=1.0))
+            h.pulloff_approach / T.graded_critical_approach(E0=1.0, c0=1.0, k=0.0, radius=1.0, work=1.0)
+        )
         assert abs(d_ratio - 1) <= 0.5 / N + u / r + 0.3 / N
 
 
@@ -118,8 +122,21 @@ def _first_order(k):
     return c_below + t * (c_above - c_below), abs(c_above - c_below)
 
 
-@pytest.mark.parametrize("k,N", [(-0.95, 56), (-0.925, 56), (-0.9, 40), (-0.9, 56),
-                                 (0.9, 40), (0.9, 56), (0.925, 40), (0.925, 56), (0.95, 40), (0.95, 56)])
+@pytest.mark.parametrize(
+    "k,N",
+    [
+        (-0.95, 56),
+        (-0.925, 56),
+        (-0.9, 40),
+        (-0.9, 56),
+        (0.9, 40),
+        (0.9, 56),
+        (0.925, 40),
+        (0.925, 56),
+        (0.95, 40),
+        (0.95, 56),
+    ],
+)
 def test_calibrated_circle_follows_the_fitted_first_order_approach(k, N, homogeneous_circle):
     """Beyond |k| = 0.75 (where the kernel r^-(1+k) is nearly flat, k -> -1, or nearly
     r^-2, k -> 1): on grids not in the sweep, the calibrated circle's pull-off relative to

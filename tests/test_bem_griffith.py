@@ -4,6 +4,7 @@ Tolerances: the Kendall envelope 0.5 Delta/a is the one the formula sheet report
 (section 6) and the sweep in benchmarks/study_griffith_circle.py reproduces; the stiffness
 prefactor 0.15 Delta/a covers the fitted 0.12 Delta/a of the same sweep.
 """
+
 import dataclasses
 import math
 
@@ -38,6 +39,7 @@ def run(scene, N, **kw):
 
 # -- the preconditioner's symbol ----------------------------------------------
 
+
 def test_lattice_symbol_equals_the_periodic_image_sum():
     """Poisson summation of 2/(E* q) times the element's sinc^2 against the image sum of
     Love's coefficients (love_influence_periodic, an independent construction): the alias
@@ -48,7 +50,7 @@ def test_lattice_symbol_equals_the_periodic_image_sum():
     errs = []
     for t in terms:
         lat = lattice_symbol((n, n), h, lambda q: 2.0 / (E * q), terms=t)
-        assert np.isinf(lat[0, 0])   # the continuum's 1/q; the periodic kernel has zero mean there
+        assert np.isinf(lat[0, 0])  # the continuum's 1/q; the periodic kernel has zero mean there
         errs.append(np.max(np.abs(per.ravel()[1:] / lat.ravel()[1:] - 1)))
     rate = -np.polyfit(np.log(terms), np.log(errs), 1)[0]
     assert rate > 1.5 and errs[-1] < 1e-4
@@ -68,7 +70,7 @@ def test_window_symbol_of_a_graded_kernel_tends_to_the_lattice_symbol(k):
         P = (2 * n, 2 * n)
         window = np.fft.rfft2(graded_influence(n, n, 1.0, 1.0, 1.0, k, P)).real
         lattice = lattice_symbol(P, 1.0, lambda q: A * ft(q), terms=20)
-        errs.append(window[n, n] / lattice[n, n] - 1)    # the highest frequency
+        errs.append(window[n, n] / lattice[n, n] - 1)  # the highest frequency
     fitted = -np.polyfit(np.log(ns), np.log(errs), 1)[0]
     assert fitted == pytest.approx(rate, abs=0.05)
 
@@ -92,6 +94,7 @@ def test_elongated_faces_get_a_positive_preconditioner_and_the_same_answer():
 
 
 # -- the operator -----------------------------------------------------------
+
 
 @pytest.mark.parametrize("x,y", [(0.0, 0.0), (0.3, -0.1), (0.5, 0.5), (1.7, 0.4), (-3.0, 2.0)])
 def test_love_integral_matches_quadrature(x, y):
@@ -119,17 +122,20 @@ def test_window_operator_is_the_grid_operator_on_a_sub_box(k):
     """The smaller window's coefficients are the same C_SS: a pressure that fits into the
     window gives the grid's displacement there, on a much smaller padded grid."""
     nx, ny = 23, 17
-    K = (love_influence(nx, ny, 0.3, 2.0, padded_shape(nx, ny)) if k == 0
-         else graded_influence(nx, ny, 0.3, 2.0, 1.0, k, padded_shape(nx, ny)))
+    K = (
+        love_influence(nx, ny, 0.3, 2.0, padded_shape(nx, ny))
+        if k == 0
+        else graded_influence(nx, ny, 0.3, 2.0, 1.0, k, padded_shape(nx, ny))
+    )
     op = bg.HalfSpaceOperator(K, (nx, ny))
     rng = np.random.default_rng(3)
     for (wx, wy), (i0, j0) in [((9, 6), (5, 11)), ((1, 17), (22, 0)), ((23, 4), (0, 2))]:
         win = op.window((wx, wy))
         assert np.prod(win.padded_shape) < np.prod(op.padded_shape)
         p = np.zeros((nx, ny))
-        p[i0:i0 + wx, j0:j0 + wy] = rng.standard_normal((wx, wy))
-        full = op.apply(p)[i0:i0 + wx, j0:j0 + wy]
-        assert np.allclose(win.apply(p[i0:i0 + wx, j0:j0 + wy]), full, rtol=0, atol=1e-13 * np.abs(full).max())
+        p[i0 : i0 + wx, j0 : j0 + wy] = rng.standard_normal((wx, wy))
+        full = op.apply(p)[i0 : i0 + wx, j0 : j0 + wy]
+        assert np.allclose(win.apply(p[i0 : i0 + wx, j0 : j0 + wy]), full, rtol=0, atol=1e-13 * np.abs(full).max())
     with pytest.raises(ValueError, match="fit"):
         op.window((nx + 1, 3))
 
@@ -183,9 +189,17 @@ def test_kendall_pulloff_within_first_order_envelope(kendall_sweep):
 
 
 def test_cut_cascade_changes_nothing():
-    for scene, N in [(circle_scene(), 24), (dataclasses.replace(circle_scene(), indenter=cs.Indenter(cs.Square(2.0))), 20),
-                     (dataclasses.replace(circle_scene(), indenter=cs.Indenter(cs.Star(5, 1.0, 0.5))), 16),
-                     (dataclasses.replace(circle_scene(), indenter=cs.Indenter(cs.TwoCircles(radius1=1.0, radius2=0.6, distance=1.5))), 16)]:
+    for scene, N in [
+        (circle_scene(), 24),
+        (dataclasses.replace(circle_scene(), indenter=cs.Indenter(cs.Square(2.0))), 20),
+        (dataclasses.replace(circle_scene(), indenter=cs.Indenter(cs.Star(5, 1.0, 0.5))), 16),
+        (
+            dataclasses.replace(
+                circle_scene(), indenter=cs.Indenter(cs.TwoCircles(radius1=1.0, radius2=0.6, distance=1.5))
+            ),
+            16,
+        ),
+    ]:
         cut, full = run(scene, N), run(scene, N, stop_when_certainly_detached=False)
         assert cut.pulloff_force == pytest.approx(full.pulloff_force, rel=1e-9)
         assert cut.pulloff_approach == pytest.approx(full.pulloff_approach, rel=1e-9)
@@ -209,6 +223,7 @@ def test_fixed_step_converges_to_event_driven():
 
 
 # -- square, triangle, invariances --------------------------------------------------
+
 
 def square_scene(**kw):
     return cs.Scene(cs.Indenter(cs.Square(2.0, **kw)), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
@@ -254,7 +269,9 @@ def test_rotation_and_mirror_invariance():
     rot = run(square_scene(rotation_deg=30.0), 24)
     # only the staircase differs: the force scales like area^(3/4) for the same shape
     assert rot.pulloff_force == pytest.approx(base.pulloff_force, rel=0.03)
-    tri = cs.Scene(cs.Indenter(cs.Triangle.equilateral(2.0, rotation_deg=10)), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
+    tri = cs.Scene(
+        cs.Indenter(cs.Triangle.equilateral(2.0, rotation_deg=10)), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0)
+    )
     mir = dataclasses.replace(tri, indenter=cs.Indenter(tri.indenter.shape.mirrored()))
     a, b = run(tri, 20), run(mir, 20)
     assert b.pulloff_force == pytest.approx(a.pulloff_force, rel=1e-9)
@@ -275,6 +292,7 @@ def test_unit_scaling():
 
 # -- sphere: JKR ---------------------------------------------------------------
 
+
 def jkr_scene():
     return cs.load_scene(SCENE_DIR / "jkr_sphere.toml")
 
@@ -284,10 +302,10 @@ def test_jkr_sphere_converges_to_1_5_pi_w_R():
     FJ = T.jkr_pulloff_force(work=0.01, sphere_radius=1.0)
     Ns = np.array([16, 20, 24, 28, 32])
     err = np.array([run(sc, N).pulloff_force / FJ - 1 for N in Ns])
-    assert np.all(err > 0)                             # the mesh-dependent criterion errs on the strong side
+    assert np.all(err > 0)  # the mesh-dependent criterion errs on the strong side
     rate = -np.polyfit(np.log(Ns), np.log(err), 1)[0]
-    assert 0.6 < rate < 1.4                            # first order
-    c, e_inf = np.polyfit(1 / Ns, err, 1)              # Richardson: F = F_inf + c / N
+    assert 0.6 < rate < 1.4  # first order
+    c, e_inf = np.polyfit(1 / Ns, err, 1)  # Richardson: F = F_inf + c / N
     assert abs(e_inf) < 0.01
 
 
@@ -305,6 +323,7 @@ def test_jkr_sphere_within_one_percent_without_extrapolation_slow():
 
 
 # -- robustness ----------------------------------------------------------------
+
 
 def test_no_adhesion_detaches_at_contact_and_strong_adhesion_is_reported():
     r = run(circle_scene(work=0.0), 16)
@@ -370,8 +389,12 @@ def test_snapshots_and_fields_only_when_asked():
 
 def test_press_to_force_matches_hertz():
     R, E, F0 = 1.0, 1.0, 0.05
-    sc = cs.Scene(cs.Indenter(cs.Circle(0.4), cs.Paraboloid(R)), cs.Homogeneous(0.75, 0.5), cs.Adhesion(0.0),
-                  cs.Loading(press_force=F0))
+    sc = cs.Scene(
+        cs.Indenter(cs.Circle(0.4), cs.Paraboloid(R)),
+        cs.Homogeneous(0.75, 0.5),
+        cs.Adhesion(0.0),
+        cs.Loading(press_force=F0),
+    )
     d_hertz = (9 * F0**2 / (16 * R * E**2)) ** (1 / 3)
     a_hertz = math.sqrt(R * d_hertz)
     errs = []
@@ -381,9 +404,9 @@ def test_press_to_force_matches_hertz():
         assert r.force == pytest.approx(F0, rel=1e-9)
         # the contact area is a staircase: within sqrt(2) P h of the Hertz disc
         assert abs(r.contact_area - math.pi * a_hertz**2) <= math.sqrt(2) * 2 * math.pi * a_hertz * h
-        assert r.stiffness == pytest.approx(2 * E * a_hertz, abs=2 * E * h)   # unloading stiffness 2 E* a
+        assert r.stiffness == pytest.approx(2 * E * a_hertz, abs=2 * E * h)  # unloading stiffness 2 E* a
         errs.append(abs(r.approach / d_hertz - 1))
-    assert errs[1] < errs[0] / 2.5 and errs[1] < 1e-3                          # better than first order
+    assert errs[1] < errs[0] / 2.5 and errs[1] < 1e-3  # better than first order
 
 
 def test_unload_reload_reattaches_the_whole_face():
@@ -406,6 +429,7 @@ def test_unload_reload_reattaches_the_whole_face():
 # periodic half-space (an array of punches)
 # ---------------------------------------------------------------------------
 
+
 def test_periodic_kernel_carries_the_lattice_madelung_constant():
     """The zero-mean periodic coefficients differ from the isolated ones by the lattice sum:
     self-coefficient shift -> Delta^2 M0 / (pi E* L), M0 = 4 zeta(1/2) beta(1/2), with an
@@ -418,9 +442,9 @@ def test_periodic_kernel_carries_the_lattice_madelung_constant():
         C = love_influence_periodic(n, h, 2.0)
         shift = C[0, 0] - love_square_integral(0.0, 0.0, h / 2) / (np.pi * 2.0)
         errs.append(abs(shift / (h * h * MADELUNG_SQUARE / (np.pi * 2.0)) - 1))
-        assert abs(C.sum()) <= 1e-12 * np.abs(C).sum()          # zero mean: the mean plane is the datum
-        mirror = (-np.arange(n)) % n                                  # offset -i, modulo the cell
-        tol = 1e-12 * np.abs(C).max()                               # round-off of the image sums
+        assert abs(C.sum()) <= 1e-12 * np.abs(C).sum()  # zero mean: the mean plane is the datum
+        mirror = (-np.arange(n)) % n  # offset -i, modulo the cell
+        tol = 1e-12 * np.abs(C).max()  # round-off of the image sums
         assert np.allclose(C, C[mirror][:, mirror], rtol=0, atol=tol) and np.allclose(C, C.T, rtol=0, atol=tol)
     rate = -np.polyfit(np.log(ns), np.log(errs), 1)[0]
     assert 1.8 <= rate <= 2.2 and errs[-1] < 2e-4, (errs, rate)
@@ -462,5 +486,5 @@ def test_periodic_punch_array_matches_the_lattice_correction():
         dF.append(abs(r.pulloff_force / iso.pulloff_force - 1))
     for errs in (dK, dF):
         rate = -np.polyfit(np.log(Ls), np.log(errs), 1)[0]
-        assert rate >= 2.7, (errs, rate)                              # at least (a/L)^3
+        assert rate >= 2.7, (errs, rate)  # at least (a/L)^3
     assert max(dK[-1], dF[-1]) < 1e-2

@@ -1,6 +1,7 @@
 """The result cache under the conditions a real report meets: a run killed mid-way, two runs
 sharing one cache directory, and a dask scheduler with worker processes.  Each must give the
 numbers of a clean run."""
+
 import json
 import os
 import shutil
@@ -12,21 +13,31 @@ import time
 import pytest
 
 SCENES = ["square"]
-_REPORT = ("import sys, crossval; crossval.report(sys.argv[1], quick=True, cache_dir=sys.argv[2] or None, "
-           "scenes=sys.argv[3].split(','), workers=1, scheduler=(sys.argv[4] if len(sys.argv) > 4 else None))")
+_REPORT = (
+    "import sys, crossval; crossval.report(sys.argv[1], quick=True, cache_dir=sys.argv[2] or None, "
+    "scenes=sys.argv[3].split(','), workers=1, scheduler=(sys.argv[4] if len(sys.argv) > 4 else None))"
+)
 
 
 def _report(out, cache, *extra):
-    return subprocess.Popen([sys.executable, "-c", _REPORT, str(out), str(cache), ",".join(SCENES), *extra],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    return subprocess.Popen(
+        [sys.executable, "-c", _REPORT, str(out), str(cache), ",".join(SCENES), *extra],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
 
 
 def _numbers(out):
     """What a reader takes from a report: every run's value and every check (timings excluded)."""
     data = json.loads((out / "results.json").read_text())
-    return {s: ([(r["method"], r["resolution"], r["pulloff_force"]) for r in v["runs"]],
-                [(c["method"], c["quantity"], c["value"], c["reference"], c["passed"]) for c in v["checks"]])
-            for s, v in data["scenes"].items()}
+    return {
+        s: (
+            [(r["method"], r["resolution"], r["pulloff_force"]) for r in v["runs"]],
+            [(c["method"], c["quantity"], c["value"], c["reference"], c["passed"]) for c in v["checks"]],
+        )
+        for s, v in data["scenes"].items()
+    }
 
 
 def _finish(p):
@@ -72,16 +83,37 @@ def test_report_on_a_dask_scheduler_with_two_workers(tmp_path, clean):
         pytest.skip("the dask command is not installed")
     sched_file = tmp_path / "scheduler.json"
     env = {**os.environ, "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
-    procs = [subprocess.Popen([dask, "scheduler", "--host", "127.0.0.1", "--port", "0", "--no-dashboard",
-                               "--scheduler-file", str(sched_file)], env=env,
-                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)]
+    procs = [
+        subprocess.Popen(
+            [
+                dask,
+                "scheduler",
+                "--host",
+                "127.0.0.1",
+                "--port",
+                "0",
+                "--no-dashboard",
+                "--scheduler-file",
+                str(sched_file),
+            ],
+            env=env,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+        )
+    ]
     try:
         deadline = time.monotonic() + 60
         while not sched_file.exists() and time.monotonic() < deadline:
             time.sleep(0.2)
         address = json.loads(sched_file.read_text())["address"]
-        procs.append(subprocess.Popen([dask, "worker", address, "--nworkers", "2", "--nthreads", "1", "--no-dashboard"],
-                                      env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+        procs.append(
+            subprocess.Popen(
+                [dask, "worker", address, "--nworkers", "2", "--nthreads", "1", "--no-dashboard"],
+                env=env,
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL,
+            )
+        )
         _finish(_report(tmp_path / "r", "", address))
         assert _numbers(tmp_path / "r") == clean
     finally:

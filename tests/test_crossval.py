@@ -1,4 +1,5 @@
 """The harness: compare, the reference helper and the pytest plugin."""
+
 import dataclasses
 import json
 import subprocess
@@ -40,8 +41,21 @@ def test_a_failing_check_explains_itself():
 
 
 def test_compare_cli_exit_status(tmp_path):
-    r = subprocess.run([sys.executable, "-m", "crossval.cli", "compare", str(SCENE_DIR / "square.toml"),
-                        "--resolution", "12", "--quick", "--json"], capture_output=True, text=True)
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "crossval.cli",
+            "compare",
+            str(SCENE_DIR / "square.toml"),
+            "--resolution",
+            "12",
+            "--quick",
+            "--json",
+        ],
+        capture_output=True,
+        text=True,
+    )
     assert r.returncode == 0, r.stderr
     out = json.loads(r.stdout)
     assert out["passed"] and "fem_reference" in out["skipped"]
@@ -92,7 +106,7 @@ def test_plugin_fixture_is_registered(pytester):
             ref = adhesion_reference("incompressible_circle")
             assert ref.result.method == "fem_reference"
     """)
-    pytester.runpytest().assert_outcomes(passed=1)   # registered through the pytest11 entry point
+    pytester.runpytest().assert_outcomes(passed=1)  # registered through the pytest11 entry point
 
 
 def test_cli_version_help_and_module_entry():
@@ -105,6 +119,7 @@ def test_cli_version_help_and_module_entry():
         yield path, cmd
         for name, sub in getattr(cmd, "commands", {}).items():
             yield from walk(sub, f"{path} {name}")
+
     for path, cmd in walk(main, "crossval"):
         assert cmd.help, f"{path} has no help"
         for p in cmd.params:
@@ -115,13 +130,30 @@ def test_cli_version_help_and_module_entry():
 
 
 def test_study_cli_reports_rates_and_reference():
-    r = subprocess.run([sys.executable, "-m", "crossval.cli", "study", str(SCENE_DIR / "kendall_circle.toml"),
-                        "--method", "bem_griffith", "--resolutions", "8,16,32", "--json"], capture_output=True, text=True)
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "crossval.cli",
+            "study",
+            str(SCENE_DIR / "kendall_circle.toml"),
+            "--method",
+            "bem_griffith",
+            "--resolutions",
+            "8,16,32",
+            "--json",
+        ],
+        capture_output=True,
+        text=True,
+    )
     assert r.returncode == 0, r.stderr
     out = json.loads(r.stdout)
     assert out["reference_name"].startswith("Kendall") and out["rates"]["bem_griffith"] > 0.7
-    bad = subprocess.run([sys.executable, "-m", "crossval.cli", "study", str(SCENE_DIR / "square.toml"),
-                          "--method", "fem_reference"], capture_output=True, text=True)
+    bad = subprocess.run(
+        [sys.executable, "-m", "crossval.cli", "study", str(SCENE_DIR / "square.toml"), "--method", "fem_reference"],
+        capture_output=True,
+        text=True,
+    )
     assert bad.returncode == 2 and "circular" in bad.stderr
 
 
@@ -137,12 +169,27 @@ def test_calibrated_graded_pulloff_is_labelled_a_calibration_residual():
     from bem_griffith.error_model import error_bars
 
     area = round(np.pi * N * N) / N**2
-    fake = cs.Result("bem_griffith", th["pulloff_force"], th["pulloff_approach"], th["stiffness"], True, 1.0 / N,
-                     face_area=area, error_bars=error_bars(sc, spacing=1.0 / N, face_area=area,
-                                                           graded_criterion="calibrated"))
-    fem = cs.Result("fem_reference", th["pulloff_force"], th["pulloff_approach"], th["stiffness"], True, 1e-5,
-                    accuracy_estimate=1e-5, discretisation="mesh",
-                    error_bars={q: cs.ErrorBar(1e-5, "test") for q in cs.QUANTITIES})
+    fake = cs.Result(
+        "bem_griffith",
+        th["pulloff_force"],
+        th["pulloff_approach"],
+        th["stiffness"],
+        True,
+        1.0 / N,
+        face_area=area,
+        error_bars=error_bars(sc, spacing=1.0 / N, face_area=area, graded_criterion="calibrated"),
+    )
+    fem = cs.Result(
+        "fem_reference",
+        th["pulloff_force"],
+        th["pulloff_approach"],
+        th["stiffness"],
+        True,
+        1e-5,
+        accuracy_estimate=1e-5,
+        discretisation="mesh",
+        error_bars={q: cs.ErrorBar(1e-5, "test") for q in cs.QUANTITIES},
+    )
     checks = check_results(sc, {"bem_griffith": fake, "fem_reference": fem})
     roles = {(c.method, c.quantity): c.role for c in checks}
     assert roles[("bem_griffith", "pulloff_force")] == "calibration"
@@ -161,8 +208,17 @@ def test_calibrated_graded_pulloff_is_labelled_a_calibration_residual():
 def test_long_solves_report_their_stage_with_v_and_stay_silent_without():
     """-v on a non-terminal: the stage in words (range i of n) and periodic points; without it,
     nothing on stderr (the libraries only log and call back)."""
-    args = [sys.executable, "-m", "crossval", "solve", "incompressible_circle", "--method", "bem_energy",
-            "--resolution", "1"]
+    args = [
+        sys.executable,
+        "-m",
+        "crossval",
+        "solve",
+        "incompressible_circle",
+        "--method",
+        "bem_energy",
+        "--resolution",
+        "1",
+    ]
     loud = subprocess.run([*args[:3], "-v", *args[3:]], capture_output=True, text=True)
     assert loud.returncode == 0, loud.stderr
     for i in (1, 4):

@@ -6,6 +6,7 @@ benchmarks/study_energy_process_zone.py (quoted in ``bem_energy.potentials``); t
 envelope 0.16 / N of the fixed-range study (benchmarks/study_energy.py, tests/test_bem_energy.py);
 minimisers stopped at a projected gradient g agree on forces to about g relative.
 """
+
 import dataclasses
 import math
 
@@ -98,6 +99,7 @@ def test_maugis_dugdale_needs_more_elements_per_process_zone():
 
 # -- the cvxpy minimiser ----------------------------------------------------------------
 
+
 def test_cvxpy_is_exact_at_the_degenerate_flat_press():
     """A flat face at d = 0 without adhesion: every cell at the wall under zero pressure.  An
     interior point stops about 1e-4 short of such a minimum whatever the length scale (it
@@ -127,8 +129,10 @@ def test_cvxpy_pull_off_agrees_with_projected_cg():
     asserted; stopped at 1e-6 instead they differ by 1.5e-6)."""
     W = 0.02
     sc = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.0), cs.Adhesion(W, math.sqrt(0.4 * W)))
-    out = {m: be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=6), minimiser=m, gtol=1e-8))
-           for m in ("pk", "cvxpy")}
+    out = {
+        m: be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=6), minimiser=m, gtol=1e-8))
+        for m in ("pk", "cvxpy")
+    }
     ref, r = out["pk"], out["cvxpy"]
     assert ref.converged and r.converged and not r.messages
     assert r.info["face_elements"] == 112 and r.detached
@@ -140,29 +144,45 @@ def test_cvxpy_pull_off_agrees_with_projected_cg():
 
 # -- the levers that make the zero-range sequence fast keep its answers ----------------
 
+
 def _rho(ratio, work=0.02):
-    return math.sqrt(ratio * work)       # E* = 1, a = 1: l_c = rho^2 / w
+    return math.sqrt(ratio * work)  # E* = 1, a = 1: l_c = rho^2 / w
 
 
 #: pulling steps where a detaching trial can be told from an attached one only by a rule that
 #: scales with l_c / a: circles with s = 0.8 and 0.4, a JKR sphere (paraboloid, R = 2 a)
 #: whose contact shrinks over the whole pull, and a graded body (k = 0.5)
 PEEL_CASES = {
-    "circle l_c = 0.08 a": (cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.0),
-                                     cs.Adhesion(0.02, _rho(0.08))), 24),
-    "circle l_c = 0.04 a": (cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.0),
-                                     cs.Adhesion(0.02, _rho(0.04))), 25),
-    "JKR sphere": (cs.Scene(cs.Indenter(cs.Circle(1.0), cs.Paraboloid(2.0)), cs.Homogeneous(1.0, 0.0),
-                            cs.Adhesion(0.02, _rho(0.1)), loading=cs.Loading(press_approach=0.2)), 20),
-    "graded k = 0.5": (cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, 0.5),
-                                cs.Adhesion(0.02, 0.05)), 16),
+    "circle l_c = 0.08 a": (
+        cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.0), cs.Adhesion(0.02, _rho(0.08))),
+        24,
+    ),
+    "circle l_c = 0.04 a": (
+        cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.0), cs.Adhesion(0.02, _rho(0.04))),
+        25,
+    ),
+    "JKR sphere": (
+        cs.Scene(
+            cs.Indenter(cs.Circle(1.0), cs.Paraboloid(2.0)),
+            cs.Homogeneous(1.0, 0.0),
+            cs.Adhesion(0.02, _rho(0.1)),
+            loading=cs.Loading(press_approach=0.2),
+        ),
+        20,
+    ),
+    "graded k = 0.5": (
+        cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, 0.5), cs.Adhesion(0.02, 0.05)),
+        16,
+    ),
 }
 
 
 def _peel_pair(name):
     sc, N = PEEL_CASES[name]
-    return [be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=N), stop_peeling_trials=stop))
-            for stop in (False, True)]
+    return [
+        be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=N), stop_peeling_trials=stop))
+        for stop in (False, True)
+    ]
 
 
 @pytest.mark.parametrize("name", list(PEEL_CASES))
@@ -202,5 +222,5 @@ def test_snap_off_need_not_be_located_once_a_smooth_maximum_is_bracketed():
     assert full.info["peak"] == fast.info["peak"] == "refined"
     assert fast.pulloff_force == full.pulloff_force and fast.pulloff_approach == full.pulloff_approach
     assert fast.stats.linear_solves < full.stats.linear_solves
-    step = (full.curve.approach[1] - full.curve.approach[2])
+    step = full.curve.approach[1] - full.curve.approach[2]
     assert fast.detachment_approach <= full.detachment_approach <= fast.detachment_approach + step

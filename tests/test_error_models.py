@@ -6,6 +6,7 @@ The Griffith and energy BEMs' models are fitted on a sweep of resolutions
 *outside* that sweep, against closed forms: Kendall (Eqs. 1, 4, 6) on the circle, the square's
 capacitance (K = pi E* C, C = 0.3667874 side: Eq. 9's beta = 1.021) at other angles.
 """
+
 from __future__ import annotations
 
 import math
@@ -34,9 +35,11 @@ def _square(angle, work=0.0):
 def test_griffith_circle_bars_cover_kendall_off_the_fitted_sweep(N):
     r = bg.solve(_circle(), bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)))
     assert r.converged
-    exact = {"pulloff_force": T.kendall_adhesion_force(E_star=1.0, radius=1.0, work=1.0),
-             "pulloff_approach": abs(T.kendall_critical_approach(E_star=1.0, radius=1.0, work=1.0)),
-             "stiffness": T.kendall_stiffness(E_star=1.0, radius=1.0)}
+    exact = {
+        "pulloff_force": T.kendall_adhesion_force(E_star=1.0, radius=1.0, work=1.0),
+        "pulloff_approach": abs(T.kendall_critical_approach(E_star=1.0, radius=1.0, work=1.0)),
+        "stiffness": T.kendall_stiffness(E_star=1.0, radius=1.0),
+    }
     for q, ref in exact.items():
         bar = r.error_bars[q]
         assert abs(abs(getattr(r, q)) / ref - 1) <= bar.relative, (q, bar)
@@ -66,7 +69,7 @@ def test_a_wrong_modulus_fails_the_stiffness_check(monkeypatch):
     assert all(c.passed for c in ok.values()) and set(ok) == {"pulloff_force", "pulloff_approach", "stiffness"}
     monkeypatch.setattr(cs.Homogeneous, "effective_modulus", property(lambda m: m.youngs_modulus))
     bad = bg.solve(sc, st)
-    monkeypatch.undo()        # the checks' closed forms use the true E*
+    monkeypatch.undo()  # the checks' closed forms use the true E*
     checks = {c.quantity: c for c in check_results(sc, {"bem_griffith": bad})}
     assert not checks["stiffness"].passed
 

@@ -1,4 +1,5 @@
 """The examples run (short versions) and say what they claim."""
+
 import contact_scene as cs
 from contact_scene import theory as T
 
@@ -31,7 +32,7 @@ def picture_problems(fig) -> list[str]:
             problems.append(f"panel {i} has no title")
     import matplotlib.pyplot as plt
 
-    plt.close(fig)                      # a test suite that keeps figures open warns (RuntimeWarning) past 20
+    plt.close(fig)  # a test suite that keeps figures open warns (RuntimeWarning) past 20
     return problems
 
 
@@ -39,7 +40,7 @@ def test_kendall_example_agrees_with_theory():
     from examples.kendall_circle import run
 
     out = run(resolution=16, fem_grading=2.0)
-    assert abs(out["bem"].pulloff_force / out["kendall"] - 1) <= 0.5 / 16     # the BEM envelope
+    assert abs(out["bem"].pulloff_force / out["kendall"] - 1) <= 0.5 / 16  # the BEM envelope
     assert abs(out["fem"].pulloff_force / out["kendall"] - 1) < 1e-4
 
 
@@ -49,7 +50,7 @@ def test_fig04_maxima_lie_between_the_bounds():
     N = 12
     out = run(N)
     for name, o in out.items():
-        lower = -o["incircle"][1]                       # F_A,lower / F_A,upper (Eq. 18 / Eq. 13)
+        lower = -o["incircle"][1]  # F_A,lower / F_A,upper (Eq. 18 / Eq. 13)
         assert lower * (1 - 0.5 / N) < o["max"] < 1.0, name
         assert o["result"].converged and o["result"].detached
     # the picture: the incircle markers are explained, nothing collides
@@ -65,8 +66,8 @@ def test_fig10_elongated_faces_end_as_rounded_rectangles():
     from examples.fig10_rectangles import run
 
     out = run(aspects=(1, 4, 8), cells_across=16)
-    assert out[1]["last_stable_fraction"] < 0.9                     # a square ends near its incircle
-    for ar in (4, 8):                                               # elongated ones keep most of the face
+    assert out[1]["last_stable_fraction"] < 0.9  # a square ends near its incircle
+    for ar in (4, 8):  # elongated ones keep most of the face
         assert out[ar]["last_stable_fraction"] > 0.8
         # ... as a rounded rectangle along the whole length, not the incircle (length 1 of ar)
         ls = out[ar]["result"].last_stable
@@ -80,7 +81,7 @@ def test_energy_example_extrapolates_toward_kendall():
 
     out = run()
     f = out["forces"]
-    assert all(x < 1 for x in f) and f == sorted(f)                  # finite ranges fall short, less as l_c shrinks
+    assert all(x < 1 for x in f) and f == sorted(f)  # finite ranges fall short, less as l_c shrinks
     # the extrapolations measured over different ratio sets and grids (README, energy BEM)
     # landed between -1.0 % (these three ratios on 16 per radius) and +1.35 %
     assert abs(out["extrapolated"] - 1) <= 0.015
@@ -93,7 +94,7 @@ def test_fig07_faults_scale_with_sqrt_filling_factor():
 
     out = run(cells_per_side=40)
     for name, o in out.items():
-        assert o["F_over_upper"] < 1.0, name                        # Eq. 24 is an upper bound
+        assert o["F_over_upper"] < 1.0, name  # Eq. 24 is an upper bound
         assert abs(o["F_over_plain"] / o["sqrt_phi"] - 1) <= 0.06, name
         assert o["result"].converged and o["result"].detached
 
@@ -105,8 +106,8 @@ def test_fig16_graded_star_positive_k_peaks_early_negative_k_is_brittle():
 
     out = run(resolution=16)
     pos, neg = out[0.5], out[-0.5]
-    assert pos["last_force_over_max"] < 0.85                          # the maximum well before the end
-    assert neg["last_force_over_max"] > 0.9                           # brittle: the end is near the maximum
+    assert pos["last_force_over_max"] < 0.85  # the maximum well before the end
+    assert neg["last_force_over_max"] > 0.9  # brittle: the end is near the maximum
     assert neg["last_stable_area"] > pos["last_stable_area"] > pos["incircle_area"]
     for o in out.values():
         assert o["result"].converged and o["result"].detached
@@ -129,7 +130,7 @@ def test_fig05_star_detaches_from_the_tips_to_near_the_incircle():
     assert ax.name == "3d"
     from examples.fig05_star import plot
 
-    assert picture_problems(plot({"star": out})) == []                 # no tick labels across panels
+    assert picture_problems(plot({"star": out})) == []  # no tick labels across panels
     no_fields = out["result"].last_stable
     import pytest
 
@@ -148,9 +149,9 @@ def test_fig03_jkr_curve_converges_and_orientation_does_not_matter():
     out = run(resolutions=(16, 24, 32), N_square=24)
     Ns = np.array(list(out["jkr"]))
     dev = np.array([o["mean_deviation"] for o in out["jkr"].values()])
-    assert -np.polyfit(np.log(Ns), np.log(dev), 1)[0] >= 0.7          # at least first order toward JKR
+    assert -np.polyfit(np.log(Ns), np.log(dev), 1)[0] >= 0.7  # at least first order toward JKR
     for o in out["jkr"].values():
-        assert o["roundness"] <= 1 + o["spacing"] / 0.25              # round to one cell (contact radius > 0.25)
+        assert o["roundness"] <= 1 + o["spacing"] / 0.25  # round to one cell (contact radius > 0.25)
     assert area_normalised_spread(out["square"]) <= 0.5 / 24
 
 
@@ -167,8 +168,8 @@ def test_fig08_brushes_collapse_onto_one_master_curve_in_sqrt_phi():
     assert out["slope"] < out["eq24_slope"]
     for name, o in b.items():
         assert o["result"].converged and o["result"].detached, name
-        assert o["last_stable_reach"] < 1.25, name                     # ends near the incircle, as the square
-        if name != "square":                                           # splitting never enhances adhesion
+        assert o["last_stable_reach"] < 1.25, name  # ends near the incircle, as the square
+        if name != "square":  # splitting never enhances adhesion
             assert o["F_over_lower"] < b["square"]["F_over_lower"], name
 
 
@@ -185,10 +186,10 @@ def test_fig09_power_law_star_gives_a_force_plateau():
     out = run(resolution=24)
     r = out["result"]
     assert r.converged and r.detached
-    assert len(out["force"]) >= 20                                    # the window is populated
+    assert len(out["force"]) >= 20  # the window is populated
     assert out["plateau_spread"] <= 1.10
     p = np.polyfit(np.log(out["radius"]), np.log(out["force"]), 1)[0]
-    assert abs(p) <= 0.2                                              # flat, not a disc's a^(3/2)
+    assert abs(p) <= 0.2  # flat, not a disc's a^(3/2)
 
 
 def test_fig13_15_physical_units_show_the_papers_features():
@@ -205,8 +206,8 @@ def test_fig13_15_physical_units_show_the_papers_features():
     for name in ("triangle", "star"):
         o = out[name]
         assert o["result"].converged and o["result"].detached
-        assert o["last_force_over_max"] < 0.98, name                 # a maximum before the last stable state
-        assert 1.0 < o["last_area_over_incircle"] < 1.6, name          # ends a little wider than the incircle
+        assert o["last_force_over_max"] < 0.98, name  # a maximum before the last stable state
+        assert 1.0 < o["last_area_over_incircle"] < 1.6, name  # ends a little wider than the incircle
     o = out["two circles"]
     face, E, w = FACES["two circles"]
     assert len(o["maxima"]) == 2 and o["maxima"][0][0] > o["maxima"][1][0]
@@ -229,7 +230,7 @@ def test_fig13_15_physical_units_show_the_papers_features():
         h = out[name]["result"].grid_spacing
         assert "[mm]" in ax.get_xlabel() and "[mm]" in ax.get_ylabel()
         assert x0 * MM <= fx0 + h and x1 * MM >= fx1 - h and y0 * MM <= fy0 + h and y1 * MM >= fy1 - h, name
-        assert (x1 - x0) * MM <= fx1 - fx0 + 8 * h, name              # the face fills the map: same unit
+        assert (x1 - x0) * MM <= fx1 - fx0 + 8 * h, name  # the face fills the map: same unit
     # unit scaling: the SI solve equals the scaled solve times sqrt(E* w L^3), to solver tolerance
     L = 0.01
     st = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=12))
@@ -264,7 +265,7 @@ def test_fig06_complicated_shapes_start_at_corners_and_end_near_the_incircle_app
         out = run(resolution=12, shape=shape)
         d, F = out["last_stable_normalised"]
         assert out["first_lost_to_corner"] <= 2.0
-        assert 1.0 <= d <= 1.3 and F >= 1.0                           # Eq. 18 is a lower bound
+        assert 1.0 <= d <= 1.3 and F >= 1.0  # Eq. 18 is a lower bound
         assert out["result"].converged and out["result"].detached
 
 
@@ -275,8 +276,9 @@ def test_every_example_is_a_gallery_page_with_a_title_and_a_short_version():
     import ast
     from pathlib import Path
 
-    scripts = sorted(p for p in (Path(__file__).resolve().parents[1] / "examples").glob("*.py")
-                     if not p.name.startswith("_"))
+    scripts = sorted(
+        p for p in (Path(__file__).resolve().parents[1] / "examples").glob("*.py") if not p.name.startswith("_")
+    )
     assert len(scripts) >= 11
     for path in scripts:
         source = path.read_text()
@@ -293,7 +295,7 @@ def test_the_gallery_switch_takes_full_or_short_and_refuses_anything_else(monkey
     from examples import _gallery
 
     monkeypatch.delenv("ADHESIVE_PUNCH_EXAMPLES", raising=False)
-    assert not _gallery.short_run()                                  # a script runs its full version
+    assert not _gallery.short_run()  # a script runs its full version
     monkeypatch.setenv("ADHESIVE_PUNCH_EXAMPLES", "short")
     assert _gallery.short_run()
     monkeypatch.setenv("ADHESIVE_PUNCH_EXAMPLES", "quick")

@@ -1,4 +1,5 @@
 """Stiff and extreme cases: finite, converged (or saying why not), never NaN."""
+
 import dataclasses
 import math
 
@@ -27,7 +28,7 @@ def test_fem_does_not_lock_as_nu_tends_to_half(nu):
 def test_graded_bem_near_the_limits_is_finite_and_stiffness_holds(k):
     mat = cs.PowerLawGraded(1.0, 1.0, k)
     st = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=16))
-    r = bg.solve(circle(mat), st)   # inside the calibration, -0.95 <= k <= 0.95
+    r = bg.solve(circle(mat), st)  # inside the calibration, -0.95 <= k <= 0.95
     assert r.converged and np.all(np.isfinite(r.curve.force)) and r.pulloff_force > 0
     assert r.info["graded_criterion"] == "calibrated"
     # Eq. 34 to the first-order envelope of the stiffness sweep (0.15/N)
@@ -35,7 +36,7 @@ def test_graded_bem_near_the_limits_is_finite_and_stiffness_holds(k):
     e = bg.solve(circle(mat), dataclasses.replace(st, graded_criterion="eq42"))
     assert e.converged and any("not calibrated" in m for m in e.messages)
     with pytest.raises(cs.SceneError, match="settings.graded_criterion"):
-        bg.solve(circle(cs.PowerLawGraded(1.0, 1.0, math.copysign(0.96, k))), st)   # outside it
+        bg.solve(circle(cs.PowerLawGraded(1.0, 1.0, math.copysign(0.96, k))), st)  # outside it
 
 
 def test_tiny_and_huge_work_of_adhesion_are_reported():
@@ -44,7 +45,10 @@ def test_tiny_and_huge_work_of_adhesion_are_reported():
     # F_A ~ sqrt(w): the same discretised factor as for w = 1
     unit = bg.solve(circle(E, work=1.0), bg.GriffithSettings(grid=cs.Grid(elements_per_radius=16)))
     assert tiny.detached and tiny.pulloff_force == pytest.approx(unit.pulloff_force * 1e-6, rel=1e-8)
-    huge = bg.solve(circle(E, work=1e6, loading=cs.Loading(pull_limit=-10.0)), bg.GriffithSettings(grid=cs.Grid(elements_per_radius=16)))
+    huge = bg.solve(
+        circle(E, work=1e6, loading=cs.Loading(pull_limit=-10.0)),
+        bg.GriffithSettings(grid=cs.Grid(elements_per_radius=16)),
+    )
     assert not huge.detached and huge.converged
     assert any("still attached" in m for m in huge.messages)
 
@@ -80,7 +84,7 @@ def test_identical_runs_are_bit_identical_and_units_scale_to_1e10():
     st = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=16), rtol=1e-13)
     a, b = bg.solve(tri, st), bg.solve(tri, st)
     assert np.array_equal(a.curve.force, b.curve.force) and np.array_equal(a.curve.approach, b.curve.approach)
-    L, E, w = 0.03, 6020.0, 0.062                     # the paper's triangle (Fig. 13), SI units
+    L, E, w = 0.03, 6020.0, 0.062  # the paper's triangle (Fig. 13), SI units
     si = cs.Scene(cs.Indenter(cs.Triangle.equilateral(L)), cs.Homogeneous(E * 0.75, 0.5), cs.Adhesion(w))
     c = bg.solve(si, st)
     assert c.pulloff_force / math.sqrt(E * w * L**3) == pytest.approx(a.pulloff_force, rel=1e-10)
@@ -89,11 +93,12 @@ def test_identical_runs_are_bit_identical_and_units_scale_to_1e10():
 
 # -- the energy method --------------------------------------------------------------
 
+
 def test_energy_method_extremes():
     import bem_energy as be
 
     st = be.EnergySettings(grid=cs.Grid(elements_per_radius=10))
-    rho = math.sqrt(0.2 * 0.02)                      # l_c = 0.2 a at E* = 1, w = 0.02
+    rho = math.sqrt(0.2 * 0.02)  # l_c = 0.2 a at E* = 1, w = 0.02
     base = circle(cs.Homogeneous(1.0, 0.0), 0.02)
     sc = cs.Scene(base.indenter, base.material, cs.Adhesion(0.02, rho))
     r1, r2 = be.solve(sc, st), be.solve(sc, st)
@@ -125,9 +130,9 @@ def test_displacement_only_elements_lock_where_the_mixed_form_does_not():
 
     nus = (0.3, 0.49, 0.499, 0.4999)
     p1 = [K(nu, grading=0.5) - 1 for nu in nus]
-    assert p1[0] < 0.05                              # a compressible body: only mesh error
-    assert all(b > a for a, b in zip(p1, p1[1:], strict=False))    # worse as nu -> 1/2 ...
-    assert p1[-1] > 1.0                              # ... beyond +100 % at nu = 0.4999
+    assert p1[0] < 0.05  # a compressible body: only mesh error
+    assert all(b > a for a, b in zip(p1, p1[1:], strict=False))  # worse as nu -> 1/2 ...
+    assert p1[-1] > 1.0  # ... beyond +100 % at nu = 0.4999
     p2 = K(0.4999, order=2, grading=0.5) - 1
     assert p1[-1] > 10 * p2 > 0
     with pytest.raises(cs.SceneError, match="poisson_ratio"):

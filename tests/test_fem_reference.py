@@ -25,13 +25,18 @@ def errors(r, mat, radius, work):
     """Relative errors of K, F_A and d_c against Eqs. 1, 6, 4 (homogeneous) or 34, 39, 38."""
     if isinstance(mat, cs.Homogeneous):
         E = mat.effective_modulus
-        exact = (T.kendall_stiffness(E_star=E, radius=radius),
-                 T.kendall_adhesion_force(E_star=E, radius=radius, work=work),
-                 T.kendall_critical_approach(E_star=E, radius=radius, work=work))
+        exact = (
+            T.kendall_stiffness(E_star=E, radius=radius),
+            T.kendall_adhesion_force(E_star=E, radius=radius, work=work),
+            T.kendall_critical_approach(E_star=E, radius=radius, work=work),
+        )
     else:
         kw = dict(E0=mat.surface_modulus, c0=mat.reference_depth, k=mat.exponent, radius=radius)
-        exact = (T.graded_stiffness(**kw), T.graded_adhesion_force(**kw, work=work),
-                 T.graded_critical_approach(**kw, work=work))
+        exact = (
+            T.graded_stiffness(**kw),
+            T.graded_adhesion_force(**kw, work=work),
+            T.graded_critical_approach(**kw, work=work),
+        )
     return {q: abs(getattr(r, q) / x - 1) for q, x in zip(QUANTITIES, exact, strict=True)}
 
 
@@ -76,11 +81,17 @@ def test_homogeneous_kendall_at_the_default_grading():
 # homogeneous nu and graded k, each at the grading a test can afford; the last runs degree 2,
 # whose estimate compares with degree 3 (the finer neighbour) instead of degree 3 with 2
 ESTIMATE_CASES = [(homogeneous(nu), 2.0, 4) for nu in (-0.5, 0.0, 0.3, 0.5)] + [
-    (cs.PowerLawGraded(1.5, 2.0, 0.5), 2.0, 4), (cs.PowerLawGraded(1.5, 2.0, 0.9), 4.0, 4), (homogeneous(0.3), 2.0, 2)]
+    (cs.PowerLawGraded(1.5, 2.0, 0.5), 2.0, 4),
+    (cs.PowerLawGraded(1.5, 2.0, 0.9), 4.0, 4),
+    (homogeneous(0.3), 2.0, 2),
+]
 
 
-@pytest.mark.parametrize("material,grading,order", ESTIMATE_CASES,
-                         ids=["nu=-0.5", "nu=0", "nu=0.3", "nu=0.5", "k=0.5", "k=0.9 grading 4", "nu=0.3 degree 2"])
+@pytest.mark.parametrize(
+    "material,grading,order",
+    ESTIMATE_CASES,
+    ids=["nu=-0.5", "nu=0", "nu=0.3", "nu=0.5", "k=0.5", "k=0.9 grading 4", "nu=0.3 degree 2"],
+)
 def test_error_estimate_bounds_the_error_and_is_sharp(material, grading, order):
     """accuracy_estimate (the largest per-quantity bound) lies between the true largest error
     of K, F_A, d_c and ten times it; each bound covers its own quantity.  The degree-pair
@@ -114,8 +125,10 @@ def test_energy_release_rate_two_ways():
 # the issue's targets at the default grading; k = 0.25 and 0.5 (about 8 s of CPU each with the
 # error estimate's second solve) stay out of CI, which covers them at grading 2 through the
 # estimator tests (test_error_estimate_bounds_the_error_and_is_sharp) and the regression rows
-@pytest.mark.parametrize("k,tol", [pytest.param(0.25, 1e-4, marks=pytest.mark.slow),
-                                   pytest.param(0.5, 1e-4, marks=pytest.mark.slow), (0.75, 1e-3)])
+@pytest.mark.parametrize(
+    "k,tol",
+    [pytest.param(0.25, 1e-4, marks=pytest.mark.slow), pytest.param(0.5, 1e-4, marks=pytest.mark.slow), (0.75, 1e-3)],
+)
 def test_graded_stiffness_and_pulloff(k, tol):
     """Eqs. 34, 38, 39 on the default (tensor-product) mesh; measured K error 2.0e-5, 5.0e-5,
     9.3e-4, and the solver's estimate covers it."""
@@ -186,8 +199,9 @@ def _scaled_difference(M1, M0):
     return (abs(D.data) / np.sqrt(s[D.row] * s[D.col])).max()
 
 
-@pytest.mark.parametrize("material,grading", [(Material(0.5, 0.4), 4.0), (Material(0.0, 0.5), 2.0)],
-                         ids=["graded k=0.5", "nu=1/2"])
+@pytest.mark.parametrize(
+    "material,grading", [(Material(0.5, 0.4), 4.0), (Material(0.0, 0.5), 2.0)], ids=["graded k=0.5", "nu=1/2"]
+)
 def test_vectorised_element_matrices_are_scikit_fems_assembly_of_the_weak_forms(material, grading):
     """The default kernels integrate the weak forms of fem_reference.model._forms with batched
     products; scikit-fem's asm of those forms is their plain statement.  Entry by entry (scaled
@@ -206,8 +220,9 @@ def test_vectorised_element_matrices_are_scikit_fems_assembly_of_the_weak_forms(
         assert _scaled_difference(M1, M0) < 1e-13, (order, elements is None)
 
 
-@pytest.mark.parametrize("material,grading", [(Material(0.9, 1 / 2.9), 4.0), (Material(0.0, 0.5), 2.0)],
-                         ids=["graded k=0.9", "nu=1/2"])
+@pytest.mark.parametrize(
+    "material,grading", [(Material(0.9, 1 / 2.9), 4.0), (Material(0.0, 0.5), 2.0)], ids=["graded k=0.9", "nu=1/2"]
+)
 def test_nested_dissection_solve_is_the_default_orderings(material, grading):
     """The same unit problem through both kernels (nested dissection with diagonal pivots
     against COLAMD with threshold pivoting): K is an energy, stationary in the solution, so it
@@ -245,8 +260,9 @@ def test_nested_dissection_is_a_permutation_with_less_fill():
     position[order] = np.arange(n)
     nd = free[np.argsort(position[free])]
     colamd = spla.splu(m.M[free][:, free].tocsc(), options={"DiagPivotThresh": 0.01})
-    dissected = spla.splu(m.M[nd][:, nd].tocsc(), permc_spec="NATURAL",
-                          options={"DiagPivotThresh": 0.0, "SymmetricMode": True})
+    dissected = spla.splu(
+        m.M[nd][:, nd].tocsc(), permc_spec="NATURAL", options={"DiagPivotThresh": 0.0, "SymmetricMode": True}
+    )
     fill = dissected.L.nnz + dissected.U.nnz
     assert fill < (colamd.L.nnz + colamd.U.nnz) / 2, (fill, colamd.L.nnz + colamd.U.nnz)
 

@@ -1,6 +1,7 @@
 """The stress-intensity detachment criterion of the Griffith BEM (``bem_griffith.stress_intensity``):
 the fit is exact on the fields it is built for, Kendall's circle follows from its own stiffness,
 a 90-degree rotation of the grid changes nothing, and what it cannot do is refused."""
+
 from __future__ import annotations
 
 import math
@@ -37,6 +38,7 @@ def disc_contact(radius_cells: float, centre=(0.31, -0.17), size=None):
 
 # -- the fit on analytic fields ---------------------------------------------------------------
 
+
 @pytest.mark.parametrize("radius_cells", [30.0, 45.5])
 def test_fit_is_exact_for_the_flat_circle_pressure(radius_cells):
     """p = C / sqrt(a^2 - r^2) (the flat circular punch) has q = p^-2 quadratic in (x, y), so
@@ -44,11 +46,11 @@ def test_fit_is_exact_for_the_flat_circle_pressure(radius_cells):
     is off the cell centres by a fraction of a cell."""
     spacing, C = 0.01, 2.5
     x, y, contact = disc_contact(radius_cells)
-    edge = math.sqrt((x[contact] ** 2 + y[contact] ** 2).max()) + 0.37   # continuum front, cells
+    edge = math.sqrt((x[contact] ** 2 + y[contact] ** 2).max()) + 0.37  # continuum front, cells
     x1 = C / np.sqrt((edge * spacing) ** 2 - (x[contact] ** 2 + y[contact] ** 2) * spacing**2)
     fit = si.fit_front(contact, x1, spacing, si.window_depths(radius_cells))
     front = contact & ~ndimage.binary_erosion(contact, ndimage.generate_binary_structure(2, 1))
-    assert fit.cells.size == np.count_nonzero(front)               # every front cell has a fit
+    assert fit.cells.size == np.count_nonzero(front)  # every front cell has a fit
     exact = C * math.sqrt(math.pi / (edge * spacing))
     assert np.max(np.abs(fit.intensity_per_approach / exact - 1)) < 1e-8
     # the fitted front is the continuum edge: 0.37 cells beyond the outermost cell centre
@@ -69,7 +71,7 @@ def test_fit_follows_the_varying_intensity_of_an_elliptical_front():
     x1 = p0 / np.sqrt(1 - g[contact])
     fit = si.fit_front(contact, x1, spacing, (8.0, 24.0, 24.0))
     front = contact & ~ndimage.binary_erosion(contact, ndimage.generate_binary_structure(2, 1))
-    assert fit.cells.size == np.count_nonzero(front)               # every front cell has a fit
+    assert fit.cells.size == np.count_nonzero(front)  # every front cell has a fit
     xs, ys = x[contact][fit.cells], y[contact][fit.cells]
     # nearest point of the ellipse to each front cell centre, by dense sampling
     t = np.linspace(0, 2 * np.pi, 200001)
@@ -77,13 +79,14 @@ def test_fit_follows_the_varying_intensity_of_an_elliptical_front():
     nearest = np.array([np.argmin((ex - u) ** 2 + (ey - v) ** 2) for u, v in zip(xs, ys, strict=True)])
     gradient = 2 * np.hypot(ex[nearest] / a**2, ey[nearest] / b**2)
     exact = p0 * np.sqrt(2 * np.pi / gradient)
-    assert exact.max() / exact.min() > 1.3                         # the test sees K vary along the front
+    assert exact.max() / exact.min() > 1.3  # the test sees K vary along the front
     # 1.1e-4 seen; the gradient taken at the cell centre instead of the fitted front is off by
     # about (offset / 2) / b ~ 1 %
     assert np.max(np.abs(fit.intensity_per_approach / exact - 1)) < 1e-3
 
 
 # -- the solver with the criterion -------------------------------------------------------------
+
 
 def holm_error(result):
     a_holm = T.holm_radius(stiffness=result.stiffness, E_star=1.0)
@@ -147,12 +150,16 @@ def test_rotation_by_ninety_degrees_changes_nothing():
     covariant under the rotation: same pull-off, approach, stiffness and contact sets up to
     FFT round-off, although the windows see the grid from another side."""
     centre = (0.013, 0.007)
-    shapes = [cs.Ellipse(1.0, 0.6, center=centre), cs.Ellipse(1.0, 0.6, rotation_deg=90.0, center=(-centre[1], centre[0]))]
+    shapes = [
+        cs.Ellipse(1.0, 0.6, center=centre),
+        cs.Ellipse(1.0, 0.6, rotation_deg=90.0, center=(-centre[1], centre[0])),
+    ]
     N = 32
     masks = [cs.rasterise(s, s.equivalent_radius / N).mask for s in shapes]
     assert np.array_equal(np.rot90(masks[0]), masks[1])
-    results = [bg.solve(cs.Scene(cs.Indenter(s), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0)), si_settings(N))
-               for s in shapes]
+    results = [
+        bg.solve(cs.Scene(cs.Indenter(s), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0)), si_settings(N)) for s in shapes
+    ]
     assert results[0].stats.linear_solves == results[1].stats.linear_solves
     assert np.array_equal(np.rot90(results[0].last_stable.contact), results[1].last_stable.contact)
     for q in ("pulloff_force", "pulloff_approach", "stiffness"):
@@ -161,6 +168,7 @@ def test_rotation_by_ninety_degrees_changes_nothing():
 
 # -- what it refuses ----------------------------------------------------------------------------
 
+
 def test_unknown_criterion_is_refused():
     with pytest.raises(SceneError, match="settings.criterion"):
         bg.GriffithSettings(criterion="griffith")
@@ -168,8 +176,9 @@ def test_unknown_criterion_is_refused():
 
 def test_periodic_grid_is_refused():
     with pytest.raises(SceneError, match="settings.criterion"):
-        bg.GriffithSettings(grid=cs.Grid(elements_per_radius=8, periodic=True, period=4.0),
-                            criterion="stress_intensity")
+        bg.GriffithSettings(
+            grid=cs.Grid(elements_per_radius=8, periodic=True, period=4.0), criterion="stress_intensity"
+        )
 
 
 def test_graded_body_is_refused_with_the_reason():
@@ -179,7 +188,11 @@ def test_graded_body_is_refused_with_the_reason():
 
 
 def test_curved_profile_is_refused():
-    scene = cs.Scene(cs.Indenter(cs.Circle(1.0), cs.Paraboloid(5.0)), cs.Homogeneous(1.0, 0.5), cs.Adhesion(1.0),
-                     cs.Loading(press_approach=0.05))
+    scene = cs.Scene(
+        cs.Indenter(cs.Circle(1.0), cs.Paraboloid(5.0)),
+        cs.Homogeneous(1.0, 0.5),
+        cs.Adhesion(1.0),
+        cs.Loading(press_approach=0.05),
+    )
     with pytest.raises(SceneError, match="settings.criterion.*flat"):
         bg.solve(scene, si_settings(8))

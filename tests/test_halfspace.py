@@ -4,6 +4,7 @@ an error in either kernel shows up as a disagreement between them.
 
 Stiffnesses here are solved directly (C_SS p = 1 on the raster, K = Delta^2 sum p) so that the
 kernel is tested apart from either solver's iteration."""
+
 import math
 
 import numpy as np
@@ -55,6 +56,7 @@ def element_centre_self_term(monkeypatch):
 
 # -- the self term -------------------------------------------------------------
 
+
 def test_lattice_zeta_is_the_glasser_zucker_constant_and_has_the_continuum_pole():
     # Z(1) = 4 zeta(1/2) beta(1/2), tabulated independently (halfspace.kernel.MADELUNG_SQUARE)
     assert hc.square_lattice_zeta(1.0) == pytest.approx(halfspace.MADELUNG_SQUARE, rel=1e-12)
@@ -74,8 +76,11 @@ def test_uniform_pressure_on_a_block_gives_the_exact_centre_displacement(k):
     others): about (1+k)^2/24 Delta^4 r^-(3+k) per element, summed beyond the inscribed
     circle r > L/2, (1+k) pi / 12 * Delta^2 (L/2)^-(1+k)."""
     M, h = 33, 1.0
-    K = hc.collocated_graded_influence(M, M, h, 1.0, 1.0, k, padded_shape(M, M)) if k else \
-        hc.collocated_influence(M, M, h, 1.0, padded_shape(M, M))
+    K = (
+        hc.collocated_graded_influence(M, M, h, 1.0, 1.0, k, padded_shape(M, M))
+        if k
+        else hc.collocated_influence(M, M, h, 1.0, padded_shape(M, M))
+    )
     A = T.graded_green_coefficient(E0=1.0, c0=1.0, k=k) if k else 1.0 / math.pi
     u = HalfSpaceOperator(K, (M, M)).apply(np.ones((M, M)))[M // 2, M // 2]
     L = M * h
@@ -89,6 +94,7 @@ def test_uniform_pressure_on_a_block_gives_the_exact_centre_displacement(k):
 
 
 # -- convergence of the flat-punch stiffness ------------------------------------
+
 
 def _fitted_rate(Ns, errors):
     return -np.polyfit(np.log(Ns), np.log(np.abs(errors)), 1)[0]
@@ -126,8 +132,9 @@ def test_collocated_square_stiffness_extrapolates_to_beta_1021():
     Ns = np.array([16, 32, 64])
     beta = {}
     for name, kernel in (("collocation", hc.collocated_influence), ("love", halfspace.love_influence)):
-        beta[name] = np.array([flat_stiffness(cs.Square(2.0), 1.0 / N, kernel)[0] / (2 * math.sqrt(4 / math.pi))
-                               for N in Ns])
+        beta[name] = np.array(
+            [flat_stiffness(cs.Square(2.0), 1.0 / N, kernel)[0] / (2 * math.sqrt(4 / math.pi)) for N in Ns]
+        )
     for b in beta.values():
         steps = np.diff(b)
         assert np.all(steps > 0) and 1.7 <= steps[0] / steps[1] <= 2.4
@@ -149,6 +156,7 @@ def test_element_centre_self_term_stalls_for_a_graded_body(monkeypatch):
 
 
 # -- the two BEMs on different kernels ---------------------------------------------
+
 
 def test_energy_settings_name_the_kernels():
     assert be.EnergySettings().kernel == "collocation"
@@ -192,7 +200,7 @@ def test_a_one_percent_kernel_error_shows_up_between_the_two_bems(monkeypatch, k
     base = check.difference
     assert check.passed and check.tolerance == pytest.approx(SAME_GRID_DIFFERENCE / N)
     assert 0.01 / N <= abs(base) <= SAME_GRID_DIFFERENCE / N
-    if kernel == "love":        # the element integral itself: every user of Love's squares sees it
+    if kernel == "love":  # the element integral itself: every user of Love's squares sees it
         monkeypatch.setattr(hk, "love_square_integral", _scaled(hk.love_square_integral, 1.01))
     else:
         monkeypatch.setattr(hc, "_point_layout", _scaled(hc._point_layout, 1.01))

@@ -1,4 +1,5 @@
 """Sweeps: serial, processes and dask give identical results; caching; report; regress; study."""
+
 import json
 import logging
 import sys
@@ -12,8 +13,12 @@ from crossval.cache import ResultCache
 from crossval.runner import Job, run_jobs
 from crossval.suite import SUITE
 
-JOBS = [Job(SUITE["square"], "bem_griffith", 8), Job(SUITE["triangle"], "bem_griffith", 8),
-        Job(SUITE["kendall_circle"], "bem_griffith", 10), Job(SUITE["incompressible_circle"], "fem_reference", 0.5)]
+JOBS = [
+    Job(SUITE["square"], "bem_griffith", 8),
+    Job(SUITE["triangle"], "bem_griffith", 8),
+    Job(SUITE["kendall_circle"], "bem_griffith", 10),
+    Job(SUITE["incompressible_circle"], "fem_reference", 0.5),
+]
 
 
 def _same(a, b):
@@ -28,8 +33,10 @@ def test_serial_processes_and_dask_are_identical():
     for a, b in zip(serial, procs, strict=True):
         _same(a, b)
     distributed = pytest.importorskip("distributed")
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cl, \
-            distributed.Client(cl) as client:
+    with (
+        distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cl,
+        distributed.Client(cl) as client,
+    ):
         for a, b in zip(serial, run_jobs(JOBS, scheduler=client), strict=True):
             _same(a, b)
 
@@ -47,6 +54,7 @@ def test_cache_is_reused_and_writes_are_atomic(tmp_path, monkeypatch):
 
     def boom(*a, **k):
         raise KeyboardInterrupt
+
     monkeypatch.setattr(np, "savez", boom)
     with pytest.raises(KeyboardInterrupt):
         ResultCache(tmp_path / "c").put(key, "partial")
@@ -102,6 +110,7 @@ def test_damaged_cache_entry_is_a_miss_with_one_warning(tmp_path, monkeypatch, c
         class Evil:
             def __reduce__(self):
                 return (pytest.fail, ("the cache unpickled an entry",))
+
         with open(path, "wb") as f:
             np.save(f, np.array([Evil()], dtype=object), allow_pickle=True)
     calls = []
@@ -117,8 +126,9 @@ def test_damaged_cache_entry_is_a_miss_with_one_warning(tmp_path, monkeypatch, c
 
 
 def test_study_fits_first_order_for_kendall():
-    st = crossval.study(SUITE["incompressible_circle"], methods=["bem_griffith"],
-                              resolutions={"bem_griffith": (8, 16, 32)})
+    st = crossval.study(
+        SUITE["incompressible_circle"], methods=["bem_griffith"], resolutions={"bem_griffith": (8, 16, 32)}
+    )
     assert st.reference_name.startswith("Kendall")
     assert st.rates["bem_griffith"] > 0.7
 
@@ -135,8 +145,10 @@ def test_report_writes_a_self_contained_page(tmp_path):
 
 def _strict_json(text):
     """RFC 8259 JSON: NaN and Infinity tokens are refused, as JavaScript's JSON.parse does."""
+
     def refuse(token):
         raise ValueError(f"not valid JSON: bare {token}")
+
     return json.loads(text, parse_constant=refuse)
 
 
@@ -149,6 +161,7 @@ def test_report_json_is_strict_even_with_non_finite_values(tmp_path, monkeypatch
         st = real(*a, **k)
         st.rates["bem_griffith"] = float("nan")
         return st
+
     monkeypatch.setattr(report_module, "study", study_with_nan_rate)
     crossval.report(tmp_path / "r", quick=True, cache_dir=None, scenes=["kendall_circle"])
     data = _strict_json((tmp_path / "r" / "results.json").read_text())

@@ -6,6 +6,7 @@ fails).  Mutants already kept elsewhere are not repeated here: Love's integral x
 same-grid stiffness check (tests/test_halfspace.py) and E instead of E* in the Griffith solver
 (tests/test_error_models.py).
 """
+
 from __future__ import annotations
 
 import math
@@ -42,7 +43,7 @@ def test_criterion_constant_five_percent_high_fails_kendalls_pulloff(monkeypatch
     monkeypatch.setattr(T, "critical_stress", lambda **kw: 1.05 * critical_stress(**kw))
     bad = _checks(sc, {"bem_griffith": _griffith(sc, 16)})
     moved = bad[("bem_griffith", "pulloff_force")].value / ok[("bem_griffith", "pulloff_force")].value - 1
-    assert moved == pytest.approx(0.05, abs=0.005)     # linear in sigma_c between events
+    assert moved == pytest.approx(0.05, abs=0.005)  # linear in sigma_c between events
     assert not bad[("bem_griffith", "pulloff_force")].passed
     assert not bad[("bem_griffith", "pulloff_approach")].passed
 
@@ -111,8 +112,9 @@ def test_paraboloid_of_half_the_radius_fails_the_jkr_pulloff(monkeypatch):
     sc = SUITE["jkr_sphere"]
     ok = _checks(sc, {"bem_griffith": _griffith(sc, 16)})[("bem_griffith", "pulloff_force")]
     assert ok.passed
-    monkeypatch.setattr(cs.Paraboloid, "height", lambda self, x, y: ((x - self.apex[0]) ** 2 + (y - self.apex[1]) ** 2)
-                        / self.radius)
+    monkeypatch.setattr(
+        cs.Paraboloid, "height", lambda self, x, y: ((x - self.apex[0]) ** 2 + (y - self.apex[1]) ** 2) / self.radius
+    )
     bad = _checks(sc, {"bem_griffith": _griffith(sc, 16)})[("bem_griffith", "pulloff_force")]
     assert bad.value / ok.value == pytest.approx(0.5, abs=0.05)
     assert not bad.passed

@@ -1,5 +1,6 @@
 """The version has one source (pyproject.toml, read at run time from the package metadata);
 CITATION.cff repeats it for citation tools, so it must not drift."""
+
 import re
 import tomllib
 from pathlib import Path

@@ -43,7 +43,7 @@ def _spread(results):
 
 def _runs():
     g = [_griffith(sc) for sc in _scenes(1.0)]
-    e = [_energy(sc) for sc in _scenes(0.02, 0.06)]    # finite range: l_c = E* rho^2 / w = 0.18
+    e = [_energy(sc) for sc in _scenes(0.02, 0.06)]  # finite range: l_c = E* rho^2 / w = 0.18
     return g, e
 
 

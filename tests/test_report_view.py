@@ -1,5 +1,6 @@
 """The report as a reader sees it: every figure is a real image, the page renders in a browser,
 results.json is strict JSON, and a convergence order is printed only where a fit means one."""
+
 import base64
 import html
 import io
@@ -49,6 +50,7 @@ def _png_size(data: bytes) -> tuple[int, int]:
 def _strict_json(text):
     def refuse(token):
         raise ValueError(f"not valid JSON: bare {token}")
+
     return json.loads(text, parse_constant=refuse)
 
 
@@ -105,8 +107,10 @@ def test_blank_cells_of_the_agreement_map_are_explained(rendered):
     from crossval.report import _agreement_row
 
     st = rep.studies["square"]
-    fin = {m: st.results[(m, max(r.resolution for r in st.rows if r.method == m))]
-           for m in dict.fromkeys(r.method for r in st.rows)}
+    fin = {
+        m: st.results[(m, max(r.resolution for r in st.rows if r.method == m))]
+        for m in dict.fromkeys(r.method for r in st.rows)
+    }
     row, notes = _agreement_row(st.scene, st, fin, rep.checks["square"], list(METHODS))
     j = list(METHODS).index("fem_reference")
     assert math.isnan(row[j]) and notes[j] == "n/a"
@@ -118,20 +122,40 @@ def test_page_renders_in_headless_chromium_with_every_figure_loaded(rendered):
     _, out = rendered
     # an inline script writes each image's natural size into the DOM once the page has loaded
     probe = out / "probe.html"
-    probe.write_text((out / "index.html").read_text() + (
-        "<script>window.addEventListener('load', () => {const p = document.createElement('pre');"
-        "p.id = 'sizes'; p.textContent = JSON.stringify([...document.images].map("
-        "i => [i.complete, i.naturalWidth, i.naturalHeight, i.getBoundingClientRect().right,"
-        " document.documentElement.clientWidth])); document.body.appendChild(p);});</script>"))
+    probe.write_text(
+        (out / "index.html").read_text()
+        + (
+            "<script>window.addEventListener('load', () => {const p = document.createElement('pre');"
+            "p.id = 'sizes'; p.textContent = JSON.stringify([...document.images].map("
+            "i => [i.complete, i.naturalWidth, i.naturalHeight, i.getBoundingClientRect().right,"
+            " document.documentElement.clientWidth])); document.body.appendChild(p);});</script>"
+        )
+    )
     with tempfile.TemporaryDirectory() as profile:
         r = subprocess.run(
-            ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-             "--disable-background-networking", "--disable-component-update", "--disable-sync",
-             f"--user-data-dir={profile}", "--window-size=1000,800", "--virtual-time-budget=5000", "--dump-dom", probe.as_uri()],
-            capture_output=True, text=True, timeout=120)
+            [
+                "chromium",
+                "--headless",
+                "--no-sandbox",
+                "--disable-gpu",
+                "--disable-quic",
+                "--no-first-run",
+                "--disable-background-networking",
+                "--disable-component-update",
+                "--disable-sync",
+                f"--user-data-dir={profile}",
+                "--window-size=1000,800",
+                "--virtual-time-budget=5000",
+                "--dump-dom",
+                probe.as_uri(),
+            ],
+            capture_output=True,
+            text=True,
+            timeout=120,
+        )
     assert r.returncode == 0, r.stderr[-2000:]
     start = r.stdout.index('<pre id="sizes">') + len('<pre id="sizes">')
-    sizes = json.loads(r.stdout[start:r.stdout.index("</pre>", start)])
+    sizes = json.loads(r.stdout[start : r.stdout.index("</pre>", start)])
     assert len(sizes) == 1 + len(SCENES)
     for complete, w, h, right, page_width in sizes:
         assert complete and w > 100 and h > 100
@@ -150,7 +174,7 @@ def test_a_clean_first_order_sequence_gets_order_one():
 
 
 def test_a_zig_zag_gets_an_envelope_not_a_rate():
-    e = 0.3 / N * np.array([1, -0.4, 0.9, 0.2, -0.7])   # the staircase's sign changes
+    e = 0.3 / N * np.array([1, -0.4, 0.9, 0.2, -0.7])  # the staircase's sign changes
     c = convergence(N, e)
     assert c.kind == "envelope" and math.isnan(c.order)
     assert c.constant == pytest.approx(0.3) and "zig-zag" in c.text
@@ -193,11 +217,14 @@ def test_without_a_closed_form_a_circle_is_measured_against_the_fem(monkeypatch)
 
     from crossval.suite import SUITE
 
-    study_module = sys.modules["crossval.study"]    # the package's ``study`` is the function
+    study_module = sys.modules["crossval.study"]  # the package's ``study`` is the function
 
     monkeypatch.setattr(study_module, "reference_values", lambda scene: {})
-    st = study_module.study(SUITE["incompressible_circle"], methods=["bem_griffith", "fem_reference"],
-                            resolutions={"bem_griffith": (8, 12, 16), "fem_reference": (0.5,)})
+    st = study_module.study(
+        SUITE["incompressible_circle"],
+        methods=["bem_griffith", "fem_reference"],
+        resolutions={"bem_griffith": (8, 12, 16), "fem_reference": (0.5,)},
+    )
     ref = st.reference_info
     assert ref.kind == "bounded" and ref.own_method == "fem_reference" and 0 < ref.uncertainty < 1e-3
     fem = st.results[("fem_reference", 0.5)]
@@ -215,8 +242,11 @@ def test_without_a_closed_form_a_circle_is_measured_against_the_fem(monkeypatch)
 
 def _labelled_ticks(axis):
     lo, hi = sorted(axis.get_view_interval())
-    return [t.label1.get_text() for t in axis.get_major_ticks() + axis.get_minor_ticks()
-            if t.label1.get_visible() and t.label1.get_text() and lo <= t.get_loc() <= hi]
+    return [
+        t.label1.get_text()
+        for t in axis.get_major_ticks() + axis.get_minor_ticks()
+        if t.label1.get_visible() and t.label1.get_text() and lo <= t.get_loc() <= hi
+    ]
 
 
 @pytest.mark.parametrize("times", [(0.03, 0.05, 0.2), (0.6, 1.4, 3.0)])
@@ -233,7 +263,10 @@ def test_error_panel_labels_its_axes_and_its_legend_hides_no_point(times):
     from crossval.suite import SUITE
 
     ref = ErrorReference(1.0, "Kendall", "closed form")
-    rows = tuple(StudyRow("bem_griffith", n, t, 1 + e, e, e) for n, t, e in zip((8, 12, 16), times, (0.03, 0.02, 0.012), strict=True))
+    rows = tuple(
+        StudyRow("bem_griffith", n, t, 1 + e, e, e)
+        for n, t, e in zip((8, 12, 16), times, (0.03, 0.02, 0.012), strict=True)
+    )
     st = Study(SUITE["kendall_circle"], "pulloff_force", 1.0, ref.name, rows, reference_info=ref)
     fig, ax = plt.subplots(layout="constrained")
     plotting.plot_error_vs_time(st, ax)

@@ -1,4 +1,5 @@
 """Scene files: the shipped examples load; every kind of bad input gets one clear message."""
+
 import copy
 import json
 import math
@@ -57,9 +58,11 @@ def test_shipped_scenes_bounds_follow_from_their_geometry(path):
     phi = shape.area / shape.nominal_area
     radius_ratio = math.sqrt(shape.nominal_area / math.pi) / shape.incircle().radius
     assert s["upper_bound_force"] / s["lower_bound_force"] == pytest.approx(
-        math.sqrt(phi) * radius_ratio ** ((3 + k) / 2), rel=1e-12)
+        math.sqrt(phi) * radius_ratio ** ((3 + k) / 2), rel=1e-12
+    )
     assert s["upper_bound_approach"] / s["lower_bound_approach"] == pytest.approx(
-        math.sqrt(phi) * radius_ratio ** ((1 - k) / 2), rel=1e-12)
+        math.sqrt(phi) * radius_ratio ** ((1 - k) / 2), rel=1e-12
+    )
 
 
 BAD = [
@@ -108,9 +111,12 @@ def test_self_intersecting_polygon_and_curved_profile_without_press():
 
 def test_nested_shapes_and_generic_rotation():
     d = copy.deepcopy(BASE)
-    d["indenter"] = {"shape": "difference", "rotation_deg": 30,
-                     "base": {"shape": "square", "side": 2.0},
-                     "cuts": [{"shape": "circle", "radius": 0.3}]}
+    d["indenter"] = {
+        "shape": "difference",
+        "rotation_deg": 30,
+        "base": {"shape": "square", "side": 2.0},
+        "cuts": [{"shape": "circle", "radius": 0.3}],
+    }
     sc = scene_from_dict(d)
     assert sc.indenter.shape.area == pytest.approx(4 - 3.14159265 * 0.09, rel=1e-3)
     d["indenter"]["cuts"] = [{"shape": "circle", "radius": "big"}]
@@ -129,8 +135,11 @@ def _kendall_from_file(path):
     E, nu = d["material"]["youngs_modulus"], d["material"]["poisson_ratio"]
     a, w = d["indenter"]["radius"], d["adhesion"]["work_of_adhesion"]
     E_star = E / (1 - nu**2)
-    return {"stiffness": 2 * E_star * a, "pulloff_approach": -math.sqrt(2 * math.pi * a * w / E_star),
-            "pulloff_force": math.sqrt(8 * math.pi * E_star * w * a**3)}
+    return {
+        "stiffness": 2 * E_star * a,
+        "pulloff_approach": -math.sqrt(2 * math.pi * a * w / E_star),
+        "pulloff_force": math.sqrt(8 * math.pi * E_star * w * a**3),
+    }
 
 
 def test_cli_scene_check_json(tmp_path):
@@ -138,7 +147,7 @@ def test_cli_scene_check_json(tmp_path):
     r = _cli("scene", "check", str(path), "--json")
     assert r.returncode == 0, r.stderr
     s = json.loads(r.stdout)
-    kendall = _kendall_from_file(path)                 # nu = 0.3: E* = 1.0989, F_A = 5.2552
+    kendall = _kendall_from_file(path)  # nu = 0.3: E* = 1.0989, F_A = 5.2552
     assert s["kendall_force"] == pytest.approx(kendall["pulloff_force"], rel=1e-12)
     assert s["kendall_approach"] == pytest.approx(kendall["pulloff_approach"], rel=1e-12)
     assert s["kendall_stiffness"] == pytest.approx(kendall["stiffness"], rel=1e-12)
@@ -147,11 +156,17 @@ def test_cli_scene_check_json(tmp_path):
     assert s["lower_bound_force"] == pytest.approx(kendall["pulloff_force"], rel=1e-12)
 
 
-@pytest.mark.parametrize("text,field", [
-    ("[indenter]\nshape='circle'\nradius=-1\n[material]\nmodel='homogeneous'\nyoungs_modulus=1\npoisson_ratio=0.3\n[adhesion]\nwork_of_adhesion=1\n", "indenter.radius"),
-    ("this is not toml", "file"),
-    ("[indenter]\nshape='circle'\nradius=1\n", "scene.adhesion: is required (also missing: material)"),
-])
+@pytest.mark.parametrize(
+    "text,field",
+    [
+        (
+            "[indenter]\nshape='circle'\nradius=-1\n[material]\nmodel='homogeneous'\nyoungs_modulus=1\npoisson_ratio=0.3\n[adhesion]\nwork_of_adhesion=1\n",
+            "indenter.radius",
+        ),
+        ("this is not toml", "file"),
+        ("[indenter]\nshape='circle'\nradius=1\n", "scene.adhesion: is required (also missing: material)"),
+    ],
+)
 def test_cli_bad_scene_exits_2_without_traceback(tmp_path, text, field):
     p = tmp_path / "bad.toml"
     p.write_text(text)
@@ -166,15 +181,38 @@ def test_cli_missing_file_exits_2():
 
 
 # every malformed value in a scene file yields a SceneError (never another exception)
-_values = st.one_of(st.none(), st.booleans(), st.integers(-10, 10), st.floats(allow_nan=True, allow_infinity=True),
-                    st.text(max_size=5), st.lists(st.integers(), max_size=3))
+_values = st.one_of(
+    st.none(),
+    st.booleans(),
+    st.integers(-10, 10),
+    st.floats(allow_nan=True, allow_infinity=True),
+    st.text(max_size=5),
+    st.lists(st.integers(), max_size=3),
+)
 
 
 @settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(st.sampled_from(["indenter.radius", "indenter.shape", "indenter.profile", "material.youngs_modulus",
-                        "material.poisson_ratio", "material.model", "adhesion.work_of_adhesion", "adhesion.range",
-                        "loading.press_approach", "loading.turning_points", "outputs.snapshots", "name",
-                        "indenter.rotation_deg", "indenter.center"]), _values)
+@given(
+    st.sampled_from(
+        [
+            "indenter.radius",
+            "indenter.shape",
+            "indenter.profile",
+            "material.youngs_modulus",
+            "material.poisson_ratio",
+            "material.model",
+            "adhesion.work_of_adhesion",
+            "adhesion.range",
+            "loading.press_approach",
+            "loading.turning_points",
+            "outputs.snapshots",
+            "name",
+            "indenter.rotation_deg",
+            "indenter.center",
+        ]
+    ),
+    _values,
+)
 def test_fuzzed_values_give_scene_errors(path, value):
     d = with_(path, value)
     try:
@@ -185,7 +223,10 @@ def test_fuzzed_values_give_scene_errors(path, value):
 
 def test_cli_solve_json_has_the_fixed_keys():
     from contact_scene.result import JSON_KEYS
-    r = _cli("solve", str(SCENE_DIR / "kendall_circle.toml"), "--method", "bem_griffith", "--resolution", "12", "--json")
+
+    r = _cli(
+        "solve", str(SCENE_DIR / "kendall_circle.toml"), "--method", "bem_griffith", "--resolution", "12", "--json"
+    )
     assert r.returncode == 0, r.stderr
     out = json.loads(r.stdout)
     assert set(JSON_KEYS) <= set(out)
@@ -222,14 +263,18 @@ def test_one_definition_per_scene_name():
         material, a, w = d["material"], d["indenter"]["radius"], d["adhesion"]["work_of_adhesion"]
         if material["model"] == "homogeneous":
             expected = _kendall_from_file(SCENE_DIR / f"{case['scene']}.toml")
-        else:                                                          # Eqs. 34, 38, 39
+        else:  # Eqs. 34, 38, 39
             E0, c0, k = material["surface_modulus"], material["reference_depth"], material["exponent"]
             cos = math.cos(math.pi * k / 2)
-            expected = {"stiffness": 4 * (2 + k) * cos / (3 + k) * E0 * a ** (1 + k) / c0**k,
-                        "pulloff_approach": -math.sqrt(math.pi * w * (3 + k) * c0**k * a ** (1 - k)
-                                                       / ((2 + k) * (1 + k) * cos * E0)),
-                        "pulloff_force": math.sqrt(8 * math.pi * 2 * (2 + k) * cos / ((3 + k) * (1 + k))
-                                                   * E0 * w * a ** (3 + k) / c0**k)}
+            expected = {
+                "stiffness": 4 * (2 + k) * cos / (3 + k) * E0 * a ** (1 + k) / c0**k,
+                "pulloff_approach": -math.sqrt(
+                    math.pi * w * (3 + k) * c0**k * a ** (1 - k) / ((2 + k) * (1 + k) * cos * E0)
+                ),
+                "pulloff_force": math.sqrt(
+                    8 * math.pi * 2 * (2 + k) * cos / ((3 + k) * (1 + k)) * E0 * w * a ** (3 + k) / c0**k
+                ),
+            }
         for quantity, value in expected.items():
             assert case["values"][quantity] == pytest.approx(value, rel=FEM_AGREEMENT), (case["scene"], quantity)
         checked.add(case["scene"])
@@ -254,14 +299,25 @@ def test_cli_refuses_range_for_zero_range_methods(method):
     assert r.stderr.startswith("error: --range:") and "bem_energy" in r.stderr
 
 
-@pytest.mark.parametrize("method,resolution,says", [
-    ("fem_reference", "100000", "--resolution: fem_reference takes from 0.5 to 20 here; it means mesh refinement"),
-    ("bem_griffith", "3000", "--resolution: bem_griffith takes from 2 to 1900 here (a finer grid needs more than the "
-                             "solver's memory limit)"),
-    ("bem_griffith", "1.5", "--resolution: bem_griffith takes from 2 to 1900 here (coarser grids put fewer than 4"),
-    ("bem_energy", "100", "--resolution: bem_energy takes from 0.25 to 64 here; it means elements per process zone"),
-    ("bem_griffith", "0", "--resolution: must be a number > 0 (got 0)"),
-])
+@pytest.mark.parametrize(
+    "method,resolution,says",
+    [
+        ("fem_reference", "100000", "--resolution: fem_reference takes from 0.5 to 20 here; it means mesh refinement"),
+        (
+            "bem_griffith",
+            "3000",
+            "--resolution: bem_griffith takes from 2 to 1900 here (a finer grid needs more than the "
+            "solver's memory limit)",
+        ),
+        ("bem_griffith", "1.5", "--resolution: bem_griffith takes from 2 to 1900 here (coarser grids put fewer than 4"),
+        (
+            "bem_energy",
+            "100",
+            "--resolution: bem_energy takes from 0.25 to 64 here; it means elements per process zone",
+        ),
+        ("bem_griffith", "0", "--resolution: must be a number > 0 (got 0)"),
+    ],
+)
 def test_cli_resolution_errors_speak_of_the_option(method, resolution, says):
     """Out-of-range resolutions are refused before any work, in terms of what the user typed:
     no internal settings (fem.grading, max_memory_gb, grid.spacing) the CLI cannot set."""
@@ -290,13 +346,14 @@ def test_resolution_limits_are_the_solvers_own():
     bg.solver.build_problem(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=0.9 * n_max), **small))
     with pytest.raises(cs.SceneError, match="max_memory_gb"):
         bg.solver.build_problem(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=1.1 * n_max), **small))
-    assert hi == bg.solver.max_elements_per_radius(sc)          # the default limit's
+    assert hi == bg.solver.max_elements_per_radius(sc)  # the default limit's
     lo, hi = METHODS["fem_reference"].resolution_range(cs.load_scene(SCENE_DIR / "kendall_circle.toml"))
     fr.FemSettings(grading=1 / hi)
     with pytest.raises(cs.SceneError, match="fem.grading"):
         fr.FemSettings(grading=1 / (hi * 1.01))
     # the coarsest advertised mesh is built; a coarser one is refused by the solver itself
     from fem_reference.model import Material
+
     fr.solver.build(Material(0.0, 0.3), fr.FemSettings(grading=1 / lo))
     with pytest.raises(cs.SceneError, match="fem.grading"):
         fr.solver.build(Material(0.0, 0.3), fr.FemSettings(grading=1 / (lo * 0.99)))
@@ -314,11 +371,12 @@ def test_cli_solve_refuses_bad_resolution_and_unknown_method():
 _KENDALL = (SCENE_DIR / "kendall_circle.toml").read_bytes()
 
 
-@settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow,
-                                                                    HealthCheck.function_scoped_fixture])
+@settings(
+    max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture]
+)
 @given(st.integers(0, len(_KENDALL)), st.integers(0, 40), st.binary(max_size=12))
 def test_fuzzed_scene_files_give_scene_errors(tmp_path, start, cut, insert):
-    data = _KENDALL[:start] + insert + _KENDALL[start + cut:]
+    data = _KENDALL[:start] + insert + _KENDALL[start + cut :]
     path = tmp_path / "fuzzed.toml"
     path.write_bytes(data)
     try:

@@ -1,4 +1,5 @@
 """Face shapes: exact geometry, rasterisation rule, invariances."""
+
 import dataclasses
 import math
 
@@ -18,7 +19,9 @@ SHAPES = {
     "hexagon": cs.RegularPolygon(6, 1.0),
     "star": cs.Star(5, 1.0, 0.45),
     "two_circles": cs.TwoCircles(radius1=1.0, radius2=0.7, distance=1.5),
-    "faults": cs.SquareWithFaults(side=1.0, v_cut_depth=0.3, v_cut_width=0.2, line_cuts=2, line_cut_length=0.4, cut_width=0.02),
+    "faults": cs.SquareWithFaults(
+        side=1.0, v_cut_depth=0.3, v_cut_width=0.2, line_cuts=2, line_cut_length=0.4, cut_width=0.02
+    ),
     "brush": cs.Brush(side=1.0, pillar_radius=0.06, pitch=0.2),
 }
 
@@ -28,6 +31,7 @@ def test_raster_area_error_is_bounded_by_the_staircase(name):
     # each cell the boundary crosses can be wrong by at most h^2, and there are ~ sqrt(2) P / h of
     # them: |A_raster - A| <= sqrt(2) P h.  P is measured on the finest raster (boundary cells x h).
     from scipy import ndimage
+
     s = SHAPES[name]
     fine = cs.rasterise(s, s.equivalent_radius / 256, min_incircle_cells=1)
     P = np.count_nonzero(fine.mask & ~ndimage.binary_erosion(fine.mask)) * fine.spacing
@@ -49,7 +53,7 @@ def test_analytic_areas_and_incircles():
     assert SHAPES["star"].area == pytest.approx(n * R * r * math.sin(math.pi / n))
     f = SHAPES["faults"]
     assert f.area_is_exact and f.area == pytest.approx(1.0 - 0.5 * 0.2 * 0.3 - 2 * 0.4 * 0.02)
-    tc = SHAPES["two_circles"]                                # lens area against a fine raster
+    tc = SHAPES["two_circles"]  # lens area against a fine raster
     assert cs.Union(tc.parts).area == pytest.approx(tc.area, rel=2e-3)
 
 
@@ -61,7 +65,7 @@ def test_closed_form_incircles_match_the_polygon_linear_programme(name):
     r, c = s.incircle()
     r_lp, c_lp = cs.Polygon(tuple(map(tuple, s.vertices))).incircle()
     assert r == pytest.approx(r_lp, rel=1e-9)
-    if name != "rectangle":                                   # a rectangle's incircle slides along its length
+    if name != "rectangle":  # a rectangle's incircle slides along its length
         assert c == pytest.approx(c_lp, abs=1e-9 * s.size)
 
 
@@ -114,7 +118,7 @@ def test_rotation_preserves_geometry(angle):
     assert rs.incircle().radius == pytest.approx(s.incircle().radius, rel=1e-6)
     h = s.equivalent_radius / 64
     a0, a1 = cs.rasterise(s, h).area, cs.rasterise(rs, h).area
-    assert abs(a1 - a0) < 2 * 10 * h * 1.0                  # within the staircase: perimeter (~10) x h
+    assert abs(a1 - a0) < 2 * 10 * h * 1.0  # within the staircase: perimeter (~10) x h
 
 
 def test_bad_polygons_are_refused():
@@ -141,6 +145,7 @@ def test_power_law_star_ring_filling_follows_design():
 
 def test_image_mask(tmp_path):
     import matplotlib.image as mpimg
+
     n = 200
     yy, xx = np.mgrid[0:n, 0:n]
     disc = (xx + 0.5 - n / 2) ** 2 + (yy + 0.5 - n / 2) ** 2 <= 60**2
@@ -158,6 +163,7 @@ def test_image_mask(tmp_path):
 @given(st.lists(st.tuples(st.floats(-1, 1), st.floats(-1, 1)), min_size=3, max_size=12))
 def test_convex_polygon_incircle_bound(points):
     from scipy.spatial import ConvexHull, QhullError
+
     try:
         hull = ConvexHull(np.array(points))
     except (QhullError, ValueError):
@@ -168,7 +174,7 @@ def test_convex_polygon_incircle_bound(points):
     p = cs.Polygon(tuple(map(tuple, v)))
     r, c = p.incircle()
     assert p.area == pytest.approx(hull.volume, rel=1e-9)
-    assert r <= 2 * p.area / hull.area * (1 + 1e-9)            # r <= 2A/P for every convex polygon
+    assert r <= 2 * p.area / hull.area * (1 + 1e-9)  # r <= 2A/P for every convex polygon
     assert -p.signed_distance(*c) == pytest.approx(r, rel=1e-6)
 
 
@@ -188,7 +194,7 @@ def test_mixed_brush_has_circular_and_square_columns_and_an_exact_area():
     b = cs.Brush(1.0, 0.07, layout="mixed", count=30, seed=1)
     kinds = {type(p) for p in b.parts}
     assert kinds == {cs.Circle, cs.Square} and len(b.parts) == 30 and b.area_is_exact
-    h = 1.0 / 2048                                   # the raster's cell; boundary cells are the error
+    h = 1.0 / 2048  # the raster's cell; boundary cells are the error
     perimeter = sum(2 * math.pi * p.radius if isinstance(p, cs.Circle) else 4 * p.side for p in b.parts)
     assert abs(raster_area(b) - b.area) <= perimeter * h
     assert cs.Brush(1.0, 0.07, layout="mixed", count=30, seed=1) == b
@@ -196,24 +202,31 @@ def test_mixed_brush_has_circular_and_square_columns_and_an_exact_area():
         cs.Brush(1.0, 0.07, layout="spiral")
 
 
-@pytest.mark.parametrize("build,field,says", [
-    (lambda: cs.Circle(0.0), "indenter.radius", r"must be > 0 \(got 0\)"),
-    (lambda: cs.Ellipse(1.0, 2.0), "indenter.semi_minor", r"must be in \(0, 1\] \(got 2\)"),
-    (lambda: cs.Star(5, 1.0, 1.5), "indenter.inner_radius", r"must be in \(0, 1\]"),
-    (lambda: cs.PowerLawStar(8, 0.5, 0.5), "indenter.outer_radius", r"must be > 0.5"),
-    (lambda: cs.RegularPolygon(3.5, 1.0), "indenter.n_sides", r"whole number in \[3, 100000\]"),
-    (lambda: cs.Square(1.0, center=(0.0,)), "indenter.center", "pair of numbers"),
-    (lambda: cs.Rectangle(1.0, 2.0, rotation_deg=float("inf")), "indenter.rotation_deg", "finite number"),
-    (lambda: cs.SquareWithFaults(2.0, v_cut_depth=2.0), "indenter.v_cut_depth", r"must be in \[0, 2\)"),
-    (lambda: cs.SquareWithFaults(1.0, line_cuts=2, line_cut_length=0.5, cut_width=0.3), "indenter.cut_width",
-     r"must be in \[0, 0.2\]"),
-    (lambda: cs.Brush(1.0, 0.1, pitch=0.2), "indenter.pitch", r"must be > 0.2"),
-    (lambda: cs.Brush(1.0, 0.1, layout="spiral"), "indenter.layout", "'regular'"),
-    (lambda: cs.Brush(1.0, 0.1, layout="random", count=0), "indenter.count", r"\[1, 100000\]"),
-    (lambda: cs.TwoCircles(1.0, 1.0, -0.5), "indenter.distance", r"must be >= 0"),
-    (lambda: cs.ImageMask(path="face.png", pixel_size=1.0, threshold=1.5), "indenter.threshold", r"in \[0, 1\]"),
-    (lambda: cs.Circle(1.0).scaled(0.0), "scale", r"must be > 0"),
-], ids=lambda v: v if isinstance(v, str) and "." in v else None)
+@pytest.mark.parametrize(
+    "build,field,says",
+    [
+        (lambda: cs.Circle(0.0), "indenter.radius", r"must be > 0 \(got 0\)"),
+        (lambda: cs.Ellipse(1.0, 2.0), "indenter.semi_minor", r"must be in \(0, 1\] \(got 2\)"),
+        (lambda: cs.Star(5, 1.0, 1.5), "indenter.inner_radius", r"must be in \(0, 1\]"),
+        (lambda: cs.PowerLawStar(8, 0.5, 0.5), "indenter.outer_radius", r"must be > 0.5"),
+        (lambda: cs.RegularPolygon(3.5, 1.0), "indenter.n_sides", r"whole number in \[3, 100000\]"),
+        (lambda: cs.Square(1.0, center=(0.0,)), "indenter.center", "pair of numbers"),
+        (lambda: cs.Rectangle(1.0, 2.0, rotation_deg=float("inf")), "indenter.rotation_deg", "finite number"),
+        (lambda: cs.SquareWithFaults(2.0, v_cut_depth=2.0), "indenter.v_cut_depth", r"must be in \[0, 2\)"),
+        (
+            lambda: cs.SquareWithFaults(1.0, line_cuts=2, line_cut_length=0.5, cut_width=0.3),
+            "indenter.cut_width",
+            r"must be in \[0, 0.2\]",
+        ),
+        (lambda: cs.Brush(1.0, 0.1, pitch=0.2), "indenter.pitch", r"must be > 0.2"),
+        (lambda: cs.Brush(1.0, 0.1, layout="spiral"), "indenter.layout", "'regular'"),
+        (lambda: cs.Brush(1.0, 0.1, layout="random", count=0), "indenter.count", r"\[1, 100000\]"),
+        (lambda: cs.TwoCircles(1.0, 1.0, -0.5), "indenter.distance", r"must be >= 0"),
+        (lambda: cs.ImageMask(path="face.png", pixel_size=1.0, threshold=1.5), "indenter.threshold", r"in \[0, 1\]"),
+        (lambda: cs.Circle(1.0).scaled(0.0), "scale", r"must be > 0"),
+    ],
+    ids=lambda v: v if isinstance(v, str) and "." in v else None,
+)
 def test_a_parameter_outside_its_range_is_refused_by_name(build, field, says):
     """Each declared range, including ranges set by another parameter (semi_minor <= semi_major,
     cut_width <= side / (2 line_cuts + 1)), names the field and the allowed values."""

@@ -23,7 +23,7 @@ def test_jkr_first_order_at_finer_grids():
     FJ = T.jkr_pulloff_force(work=0.01, sphere_radius=1.0)
     for N in (40, 48):
         err = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N))).pulloff_force / FJ - 1
-        assert 0 < err <= 2.5 / N      # first order from above, ~1.9/N in the sweep
+        assert 0 < err <= 2.5 / N  # first order from above, ~1.9/N in the sweep
 
 
 @pytest.mark.parametrize("k", [-0.9, -0.5, 0.5])
@@ -38,11 +38,14 @@ def test_graded_calibration_reproduces(k):
     from bem_griffith.criterion import CIRCLE_RATIO
 
     def scaled(kk, N):
-        r = bg.solve(cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, kk), cs.Adhesion(1.0)),
-                     bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N), graded_criterion="eq42"))
+        r = bg.solve(
+            cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, kk), cs.Adhesion(1.0)),
+            bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N), graded_criterion="eq42"),
+        )
         area = r.info["face_elements"] * r.grid_spacing**2
-        return T.force_at_nominal_area(r.pulloff_force, area=area, nominal_area=math.pi, k=kk) / T.graded_adhesion_force(
-            E0=1.0, c0=1.0, k=kk, radius=1.0, work=1.0)
+        return T.force_at_nominal_area(
+            r.pulloff_force, area=area, nominal_area=math.pi, k=kk
+        ) / T.graded_adhesion_force(E0=1.0, c0=1.0, k=kk, radius=1.0, work=1.0)
 
     Ns = np.array([32, 45, 64, 90, 128])
     rho = np.array([scaled(k, N) / scaled(0.0, N) for N in Ns])

@@ -21,6 +21,7 @@ estimate / error >= 1.09 (the square's 0.32 ... 0.01 at rate 1/2); the earlier s
 fits left 52 of them uncovered (estimate / error down to 0.03), among them the issue's circle
 windows (+3.5 % against 2.2 %, +8.7 % against 5.8 %, +1.27 % against 0.53 %).
 """
+
 from __future__ import annotations
 
 import importlib
@@ -101,9 +102,12 @@ def test_the_study_data_are_complete(seqs):
         assert s["command"].startswith("python benchmarks/study_energy_zero_range.py")
         # the stored scaled forces are the raw ones at the nominal area, F ~ A^(3/4)
         raw, area = np.array(s["raw_pulloff_forces"]), np.array(s["raster_areas"])
-        np.testing.assert_allclose(s["area_scaled_pulloff_forces"], raw * (s["nominal_area"] / area) ** 0.75, rtol=1e-12)
-        np.testing.assert_allclose(s["area_scaled_over_upper"],
-                                   np.array(s["area_scaled_pulloff_forces"]) / s["upper_bound_force"], rtol=1e-12)
+        np.testing.assert_allclose(
+            s["area_scaled_pulloff_forces"], raw * (s["nominal_area"] / area) ** 0.75, rtol=1e-12
+        )
+        np.testing.assert_allclose(
+            s["area_scaled_over_upper"], np.array(s["area_scaled_pulloff_forces"]) / s["upper_bound_force"], rtol=1e-12
+        )
     assert seqs["circle-epz2"]["kendall_force"] == pytest.approx(seqs["circle-epz2"]["upper_bound_force"], rel=1e-12)
 
 
@@ -111,9 +115,11 @@ def _report(rows, scale=1.0):
     lines, fails = [], []
     for key, win, proc, F0, err, est, u in rows:
         ok = err <= scale * est + u
-        lines.append(f"{key:13s} {win:11s} {proc:8s} F0 = {F0:.4f}  error {err:.4f}  estimate {scale * est:.4f}"
-                     f"  (+ ref. {u:.4f})  estimate/error {scale * est / err if err else float('inf'):7.2f}"
-                     + ("" if ok else "  NOT COVERED"))
+        lines.append(
+            f"{key:13s} {win:11s} {proc:8s} F0 = {F0:.4f}  error {err:.4f}  estimate {scale * est:.4f}"
+            f"  (+ ref. {u:.4f})  estimate/error {scale * est / err if err else float('inf'):7.2f}"
+            + ("" if ok else "  NOT COVERED")
+        )
         if not ok:
             fails.append(lines[-1])
     return lines, fails
@@ -148,8 +154,18 @@ def test_the_circles_tail_rate_lies_in_the_bracket(seqs):
         assert np.all((lo <= q[fine]) & (q[fine] <= hi)), (key, q)
 
 
-@pytest.mark.parametrize("terms", [[(0.6, 0.5)], [(0.6, 0.7)], [(0.6, 1.0)], [(0.6, 1.5)],
-                                   [(0.5, 0.5), (0.3, 1.0)], [(0.5, 0.5), (0.5, 1.5)], [(0.2, 1.0), (0.6, 1.5)]])
+@pytest.mark.parametrize(
+    "terms",
+    [
+        [(0.6, 0.5)],
+        [(0.6, 0.7)],
+        [(0.6, 1.0)],
+        [(0.6, 1.5)],
+        [(0.5, 0.5), (0.3, 1.0)],
+        [(0.5, 0.5), (0.5, 1.5)],
+        [(0.2, 1.0), (0.6, 1.5)],
+    ],
+)
 def test_a_tail_with_rates_in_the_bracket_is_covered(terms):
     """Shortfalls sum c_i l_c^q_i of one sign with q_i in the bracket: the limit is covered
     whichever procedure extrapolates."""

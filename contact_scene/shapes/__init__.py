@@ -15,6 +15,7 @@ largest inscribed circle, used by the lower bound, theory Eqs. 18-19) and fillin
 :mod:`.numerical` holds the fine-raster geometry used where no closed form exists.
 Units are whatever the scene uses (SI recommended); nothing here assumes a scale.
 """
+
 from .base import BOUNDARY_REL_TOL, Incircle, Shape
 from .brush import Brush
 from .composite import Difference, TwoCircles, Union
@@ -26,7 +27,24 @@ from .stars import PowerLawStar, Star
 from .transformed import Transformed
 
 __all__ = [
-    "Incircle", "Shape", "Circle", "Ellipse", "Polygon", "Rectangle", "Square", "Triangle",
-    "RegularPolygon", "Star", "PowerLawStar", "Union", "Difference", "TwoCircles",
-    "SquareWithFaults", "Brush", "ImageMask", "Transformed", "PolygonalShape", "BOUNDARY_REL_TOL",
+    "Incircle",
+    "Shape",
+    "Circle",
+    "Ellipse",
+    "Polygon",
+    "Rectangle",
+    "Square",
+    "Triangle",
+    "RegularPolygon",
+    "Star",
+    "PowerLawStar",
+    "Union",
+    "Difference",
+    "TwoCircles",
+    "SquareWithFaults",
+    "Brush",
+    "ImageMask",
+    "Transformed",
+    "PolygonalShape",
+    "BOUNDARY_REL_TOL",
 ]

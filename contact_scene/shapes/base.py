@@ -7,6 +7,7 @@ exists.  ``contains`` is the closed set: points on the boundary are inside, to a
 tolerance of ``BOUNDARY_REL_TOL`` of the shape's size, which makes the rasterisation rule of
 :mod:`contact_scene.raster` well defined when a cell centre falls exactly on an edge.
 """
+
 from __future__ import annotations
 
 import math
@@ -101,17 +102,20 @@ class Shape:
     # (Transformed is a Shape itself, so it is imported where it is used)
     def rotated(self, angle_deg: float, about=None) -> Shape:
         from .transformed import Transformed
+
         about = self.centroid if about is None else about
         return Transformed(self, rotation_deg=angle_deg, about=tuple(about))
 
     def mirrored(self, about=None) -> Shape:
         """Reflection x -> -x about a vertical line through ``about`` (default: the centroid)."""
         from .transformed import Transformed
+
         about = self.centroid if about is None else about
         return Transformed(self, mirror=True, about=tuple(about))
 
     def scaled(self, factor: float) -> Shape:
         from .transformed import Transformed
+
         return Transformed(self, scale=factor, about=(0.0, 0.0))
 
     def describe(self) -> str:

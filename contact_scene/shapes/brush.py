@@ -1,4 +1,5 @@
 """Brushes (Fig. 8): a square face whose adhering part is an array of separate pillars."""
+
 from __future__ import annotations
 
 import math
@@ -59,7 +60,7 @@ class Brush(Union):
         rng = np.random.default_rng(self.seed)
         mixed = self.layout == "mixed"
         radius, half_side = self.pillar_radius, self.side / 2
-        placed: list[tuple[float, float, float]] = []   # (x, y, half-width of the bounding box)
+        placed: list[tuple[float, float, float]] = []  # (x, y, half-width of the bounding box)
         for _ in range(_ATTEMPTS_PER_PILLAR * self.count):
             if len(placed) == self.count:
                 break
@@ -69,10 +70,14 @@ class Brush(Union):
             if all(max(abs(c[0] - q[0]), abs(c[1] - q[1])) > (r + q[2]) * 1.000001 for q in placed):
                 placed.append((float(c[0]), float(c[1]), r))
         if len(placed) < self.count:
-            raise SceneError("indenter.count", f"could place only {len(placed)} of {self.count} non-overlapping "
-                                               "pillars; lower count or pillar_radius")
-        return tuple(Square(r * math.sqrt(math.pi), center=(x, y)) if mixed and i % 2 else Circle(r, (x, y))
-                     for i, (x, y, r) in enumerate(placed))
+            raise SceneError(
+                "indenter.count",
+                f"could place only {len(placed)} of {self.count} non-overlapping pillars; lower count or pillar_radius",
+            )
+        return tuple(
+            Square(r * math.sqrt(math.pi), center=(x, y)) if mixed and i % 2 else Circle(r, (x, y))
+            for i, (x, y, r) in enumerate(placed)
+        )
 
     @property
     def nominal_area(self):

@@ -3,6 +3,7 @@
 Area and centroid are exact when the pieces do not overlap (judged by their bounding boxes),
 otherwise a quadrature on a fine raster; ``area_is_exact`` says which.
 """
+
 from __future__ import annotations
 
 import math
@@ -28,8 +29,9 @@ def _bounding_boxes_disjoint(a: Shape, b: Shape) -> bool:
 
 
 def _pairwise_disjoint(shapes) -> bool:
-    return all(_bounding_boxes_disjoint(shapes[i], shapes[j])
-               for i in range(len(shapes)) for j in range(i + 1, len(shapes)))
+    return all(
+        _bounding_boxes_disjoint(shapes[i], shapes[j]) for i in range(len(shapes)) for j in range(i + 1, len(shapes))
+    )
 
 
 def _weighted_centroid(areas, centroids) -> tuple[float, float]:
@@ -151,8 +153,9 @@ class Difference(Shape):
     @cached_property
     def centroid(self):
         if self._exact:
-            return _weighted_centroid([self.base.area] + [-c.area for c in self.cuts],
-                                      [self.base.centroid] + [c.centroid for c in self.cuts])
+            return _weighted_centroid(
+                [self.base.area] + [-c.area for c in self.cuts], [self.base.centroid] + [c.centroid for c in self.cuts]
+            )
         return numerical.raster_centroid(self)
 
 

@@ -1,4 +1,5 @@
 """Faces bounded by one conic: the circle (Kendall's punch) and the ellipse (Galin's)."""
+
 from __future__ import annotations
 
 import math

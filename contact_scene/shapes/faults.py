@@ -1,4 +1,5 @@
 """The faulted square of the paper (Fig. 7): a square face with a V notch and line cuts."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -43,6 +44,10 @@ class SquareWithFaults(Difference):
         inner_end = -half + self.line_cut_length
         for i in range(self.line_cuts):
             y = -half + side * (i + 1) / (self.line_cuts + 1)
-            cuts.append(Polygon(((-half, y - half_cut), (inner_end, y - half_cut), (inner_end, y + half_cut), (-half, y + half_cut))))
+            cuts.append(
+                Polygon(
+                    ((-half, y - half_cut), (inner_end, y - half_cut), (inner_end, y + half_cut), (-half, y + half_cut))
+                )
+            )
         object.__setattr__(self, "base", Square(side))
         object.__setattr__(self, "cuts", tuple(cuts))

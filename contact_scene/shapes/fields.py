@@ -11,6 +11,7 @@ declared earlier (``semi_minor: float = real(gt=0, le=lambda e: e.semi_major)``)
 checked in declaration order, so the earlier one is already checked when the bound is read.
 ``when`` makes a check conditional (a brush's ``pitch`` only matters for a regular layout).
 """
+
 from __future__ import annotations
 
 import dataclasses
@@ -35,13 +36,13 @@ def _value(bound: Bound, shape) -> float | None:
 class _Spec:
     """How one field is checked: ``kind`` and its range (strict ``gt``/``lt`` or closed ``ge``/``le``)."""
 
-    kind: str                       # "real" | "whole" | "point" | "choice"
+    kind: str  # "real" | "whole" | "point" | "choice"
     gt: Bound = None
     ge: Bound = None
     lt: Bound = None
     le: Bound = None
     choices: tuple[str, ...] = ()
-    name: str | None = None         # the error's field, when it is not "indenter.<field>"
+    name: str | None = None  # the error's field, when it is not "indenter.<field>"
     when: Callable[[Any], bool] | None = None
 
     def check(self, shape, name: str, value):
@@ -62,8 +63,16 @@ def _declare(spec: _Spec, default) -> Any:
     return dataclasses.field(default=default, metadata={_SPEC: spec})
 
 
-def real(default=MISSING, *, gt: Bound = None, ge: Bound = None, lt: Bound = None, le: Bound = None,
-         name: str | None = None, when: Callable[[Any], bool] | None = None) -> Any:
+def real(
+    default=MISSING,
+    *,
+    gt: Bound = None,
+    ge: Bound = None,
+    lt: Bound = None,
+    le: Bound = None,
+    name: str | None = None,
+    when: Callable[[Any], bool] | None = None,
+) -> Any:
     """A finite real number, optionally bounded (``gt``/``lt`` exclusive, ``ge``/``le`` inclusive)."""
     return _declare(_Spec("real", gt, ge, lt, le, name=name, when=when), default)
 

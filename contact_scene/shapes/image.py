@@ -1,4 +1,5 @@
 """A face read from a picture: dark pixels adhere."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -31,7 +32,10 @@ class ImageMask(Shape):
 
     def _complete(self):
         if not np.any(self._mask):
-            raise SceneError("indenter.path", f"the image {self.path!r} has no face pixels (none darker than threshold={self.threshold:g})")
+            raise SceneError(
+                "indenter.path",
+                f"the image {self.path!r} has no face pixels (none darker than threshold={self.threshold:g})",
+            )
 
     @cached_property
     def _mask(self) -> np.ndarray:

@@ -1,6 +1,7 @@
 """Numerical geometry on a fine raster, for shapes without a closed form (unions of
 overlapping parts, cut faces, images): area, centroid and incircle, each accurate to about
 1e-3 of the shape's size or better."""
+
 from __future__ import annotations
 
 import numpy as np

@@ -1,5 +1,6 @@
 """Faces bounded by straight edges: any simple polygon, and the regular ones the paper uses
 (square, rectangle, equilateral triangle, regular n-gon) with their closed-form incircles."""
+
 from __future__ import annotations
 
 import math
@@ -14,8 +15,16 @@ from . import numerical
 from .base import Incircle, Shape
 from .fields import point, real, whole
 
-__all__ = ["PolygonalShape", "Polygon", "Rectangle", "Square", "Triangle", "RegularPolygon",
-           "shoelace_area", "rotate_points"]
+__all__ = [
+    "PolygonalShape",
+    "Polygon",
+    "Rectangle",
+    "Square",
+    "Triangle",
+    "RegularPolygon",
+    "shoelace_area",
+    "rotate_points",
+]
 
 #: edge pairs tested for crossings per vectorised batch (bounds the memory of the test)
 _EDGE_PAIRS_PER_BATCH = 2_000_000
@@ -36,8 +45,10 @@ def rotate_points(points: np.ndarray, angle_deg: float, center) -> np.ndarray:
 
 def _segments_cross(p, q, r, s) -> np.ndarray:
     """Whether segments pq and rs cross properly (arrays of points, shape (..., 2))."""
+
     def orientation(a, b, c):
         return (b[..., 0] - a[..., 0]) * (c[..., 1] - a[..., 1]) - (b[..., 1] - a[..., 1]) * (c[..., 0] - a[..., 0])
+
     side_p, side_q = orientation(r, s, p), orientation(r, s, q)
     side_r, side_s = orientation(p, q, r), orientation(p, q, s)
     return ((side_p * side_q) < 0) & ((side_r * side_s) < 0)
@@ -62,8 +73,9 @@ class PolygonalShape(Shape):
         signed_area = shoelace_area(v)
         extent = np.ptp(v, axis=0).max()
         if abs(signed_area) <= 1e-12 * extent**2 or extent == 0:
-            raise SceneError("indenter.vertices",
-                             "the polygon is empty (zero area); give at least 3 non-collinear vertices")
+            raise SceneError(
+                "indenter.vertices", "the polygon is empty (zero area); give at least 3 non-collinear vertices"
+            )
         return v[::-1].copy() if signed_area < 0 else v
 
     @staticmethod
@@ -101,8 +113,10 @@ class PolygonalShape(Shape):
         x_next, y_next = np.roll(x, -1), np.roll(y, -1)
         cross = x * y_next - x_next * y
         twice_area = cross.sum()
-        return (float(((x + x_next) * cross).sum() / (3 * twice_area)),
-                float(((y + y_next) * cross).sum() / (3 * twice_area)))
+        return (
+            float(((x + x_next) * cross).sum() / (3 * twice_area)),
+            float(((y + y_next) * cross).sum() / (3 * twice_area)),
+        )
 
     @cached_property
     def is_convex(self) -> bool:
@@ -164,7 +178,7 @@ class PolygonalShape(Shape):
             A = np.column_stack([normals, np.ones(len(normals))])
             b = np.einsum("ij,ij->i", normals, v)
             res = optimize.linprog([0, 0, -1], A_ub=A, b_ub=b, bounds=[(None, None)] * 3, method="highs")
-            if res.x is not None:   # the LP of a convex polygon is feasible; else the search below
+            if res.x is not None:  # the LP of a convex polygon is feasible; else the search below
                 cx, cy, r = res.x
                 return Incircle(float(r), (float(cx), float(cy)))
         # non-convex: best point of a sampling grid, polished on the exact distance
@@ -172,8 +186,10 @@ class PolygonalShape(Shape):
         depth = -self.signed_distance(X, Y)
         i = np.unravel_index(np.argmax(depth), depth.shape)
         res = optimize.minimize(  # type: ignore[call-overload]  # scipy-stubs' options TypedDict lacks fatol
-            lambda c: float(self.signed_distance(c[0], c[1])), [X[i], Y[i]],
-            method="Nelder-Mead", options={"xatol": 1e-12 * self.size, "fatol": 1e-14 * self.size},
+            lambda c: float(self.signed_distance(c[0], c[1])),
+            [X[i], Y[i]],
+            method="Nelder-Mead",
+            options={"xatol": 1e-12 * self.size, "fatol": 1e-14 * self.size},
         )
         c = res.x if -res.fun >= depth[i] else (X[i], Y[i])
         r = max(-res.fun, depth[i])

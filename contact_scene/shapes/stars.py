@@ -1,5 +1,6 @@
 """Star-shaped faces: the paper's n-ray star (Fig. 14) and the star whose rays are cut to a
 prescribed ring filling factor (Eq. 29)."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -61,7 +62,7 @@ class PowerLawStar(PolygonalShape):
     def vertices(self):
         n, r0, R = self.n_rays, self.core_radius, self.outer_radius
         r = np.geomspace(r0, R, self.samples)
-        half_width = np.pi / n * (r0 / r) ** 3          # half the angle a ray covers at radius r
+        half_width = np.pi / n * (r0 / r) ** 3  # half the angle a ray covers at radius r
         flanks = []
         for k in range(n):
             axis = np.pi / 2 + 2 * np.pi * k / n

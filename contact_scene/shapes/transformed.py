@@ -1,4 +1,5 @@
 """Any face rotated, mirrored or scaled, without rebuilding it."""
+
 from __future__ import annotations
 
 import math
@@ -42,8 +43,9 @@ class Transformed(Shape):
         inverse = np.linalg.inv(self._matrix)
         ax, ay = self.about
         dx, dy = np.asarray(x, float) - ax, np.asarray(y, float) - ay
-        return self.shape.contains(ax + inverse[0, 0] * dx + inverse[0, 1] * dy,
-                                   ay + inverse[1, 0] * dx + inverse[1, 1] * dy)
+        return self.shape.contains(
+            ax + inverse[0, 0] * dx + inverse[0, 1] * dy, ay + inverse[1, 0] * dx + inverse[1, 1] * dy
+        )
 
     @property
     def area(self):
