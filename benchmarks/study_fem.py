@@ -3,21 +3,21 @@
     python benchmarks/study_fem.py             # convergence table and the estimate's sharpness
     python benchmarks/study_fem.py --quick     # gradings 2 (homogeneous) and 2, 4 (graded) only
     python benchmarks/study_fem.py --locking   # displacement-only elements lock, the mixed form does not
+    python benchmarks/study_fem.py --update    # also write the docs table (with --locking: its table)
 
 For each case (homogeneous nu = -0.5, 0, 0.3, 0.5; graded k = 0.25, 0.5, 0.75, 0.9) and mesh
 grading g (element size / distance to the punch edge; for graded bodies the tensor mesh's
 growth factor 1 + g), prints the unknowns, the wall time (solution and error estimate), the
 relative errors of K, F_A and d_c against Eqs. 1/6/4 and 34/39/38, the solver's estimate
 (accuracy_estimate, the largest of its three per-quantity bounds) and its ratio to the largest
-error, which the estimator must keep within [1, 10].  The columns rho K and rho K' are the
+error, which the estimator must keep within [1, 10], and the comparison solve's share of the
+wall time.  The columns rho K and rho K' are the
 error ratios between the comparison degree (3) and the solution's degree (4) on the same mesh,
 the factor the estimator assumes (fem_reference.solver.order_ratio); rho x g for graded bodies.
 
-Measured (errors of K; estimate / largest error in brackets): homogeneous at grading 1
-8.4e-6 ... 1.1e-5 [2.6 - 4.1], rho 13.2 - 21.1; at grading 2 1.9e-5 ... 2.5e-5 [2.0 - 3.4],
-rho 13.0 - 18.7.  Graded at grading 1 1.9e-6 (k = 0.9) ... 1.0e-5 (k = 0.25) [2.8 - 3.4],
-rho x g 9.2 - 11.0; at grading 2 3.6e-5 ... 2.9e-4 [3.4 - 3.5] and at grading 4
-4.2e-4 ... 4.0e-3 [4.5 - 4.6], rho x g 11.6 - 12.8.
+``--update`` writes the table to docs/accuracy_fem.json (with ``--locking``:
+docs/accuracy_fem_locking.json), rendered into docs/accuracy.md by
+``python benchmarks/docs_tables.py``.
 """
 
 from __future__ import annotations
@@ -63,7 +63,13 @@ def errors(r, mat, a=1.0, w=1.0):
     }
 
 
-def main(hom_gradings=(1.0, 2.0), graded_gradings=(1.0, 2.0, 4.0)):
+def main_time(r):
+    """Wall time of the solution itself: everything but the error estimate's comparison solve."""
+    return sum(v for key, v in r.timings.items() if key != "error_estimate")
+
+
+def main(hom_gradings=(1.0, 2.0), graded_gradings=(1.0, 2.0, 4.0), update=False):
+    record = _timing.provenance_record()
     rows = []
     head = [
         "case",
@@ -78,6 +84,7 @@ def main(hom_gradings=(1.0, 2.0), graded_gradings=(1.0, 2.0, 4.0)):
         "rho K",
         "rho K'",
         "rho g",
+        "estimate time / main",
     ]
     for cases, gradings in ((HOMOGENEOUS, hom_gradings), (GRADED, graded_gradings)):
         for name, mat in cases:
@@ -104,16 +111,20 @@ def main(hom_gradings=(1.0, 2.0), graded_gradings=(1.0, 2.0, 4.0)):
                         f"{rho_K:.1f}",
                         f"{rho_dK:.1f}",
                         "" if isinstance(mat, cs.Homogeneous) else f"{min(rho_K, rho_dK) * g:.1f}",
+                        f"{r.timings['error_estimate'] / main_time(r):.2f}",
                     ]
                 )
                 print(*rows[-1], file=sys.stderr, flush=True)
     print(_timing.table(rows, head))
+    if update:
+        _timing.write_doc_table("accuracy_fem", head, rows, record)
 
 
-def locking(nus=(0.3, 0.49, 0.499, 0.4999, 0.5)):
+def locking(nus=(0.3, 0.49, 0.499, 0.4999, 0.5), update=False):
     """Displacement-only P1 and P2 against the mixed Taylor-Hood form: K / (2 E* a) - 1."""
     from fem_reference.locking import displacement_only_stiffness
 
+    record = _timing.provenance_record()
     rows = []
     for nu in nus:
         mixed = fr.solve(
@@ -124,13 +135,17 @@ def locking(nus=(0.3, 0.49, 0.499, 0.4999, 0.5)):
         p1 = f"{displacement_only_stiffness(nu, grading=0.5) - 1:+.2e}" if nu < 0.5 else "n/a"
         p2 = f"{displacement_only_stiffness(nu, order=2, grading=0.5) - 1:+.2e}" if nu < 0.5 else "n/a"
         rows.append([nu, p1, p2, f"{mixed.stiffness / K - 1:+.2e}"])
-    print(_timing.table(rows, ["nu", "P1 displacement", "P2 displacement", "Taylor-Hood P4/P3"]))
+    head = ["nu", "P1 displacement", "P2 displacement", "Taylor-Hood P4/P3"]
+    print(_timing.table(rows, head))
+    if update:
+        _timing.write_doc_table("accuracy_fem_locking", head, rows, record)
 
 
 if __name__ == "__main__":
+    update = "--update" in sys.argv
     if "--locking" in sys.argv:
-        locking()
+        locking(update=update)
     elif "--quick" in sys.argv:
-        main(hom_gradings=(2.0,), graded_gradings=(2.0, 4.0))
+        main(hom_gradings=(2.0,), graded_gradings=(2.0, 4.0), update=update)
     else:
-        main()
+        main(update=update)
