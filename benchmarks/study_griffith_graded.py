@@ -1,7 +1,7 @@
 """Graded circle: the Griffith BEM's pull-off against Eq. 39 over a resolution sweep, and the
 calibration of the graded criterion that ``bem_griffith.criterion`` stores.
 
-    python benchmarks/study_griffith_graded.py [--quick] [--k K [K ...]]
+    python benchmarks/study_griffith_graded.py [--quick] [--update] [--k K [K ...]]
 
 For the tabulated k in -0.95 .. 0.95 (or the ``--k`` given) and N = 32 ... 181 elements per
 radius, pulls the flat circle with Eq. 42's constant (``graded_criterion="eq42"``) and prints
@@ -11,22 +11,17 @@ for -0.95 <= k <= 0.75, k = 0 included (the staircase's most stressed cells; at 
 the pressure is nearly uniform and it hardly drifts), so the calibration uses its ratio to the
 k = 0 value on the same grid, rho(k, N): fitted as rho_inf + c / N, rho_inf is the stored
 r(k), and its uncertainty u is the larger of the change to a rho_inf + c / sqrt(N) fit and the
-largest residual.  Measured (r, u, c / r, largest residual): k = -0.95: 0.25726, 0.0022,
-+0.597, 0.0003; k = -0.9: 0.36255, 0.0029, +0.558, 0.0004; k = 0.9: 1.02468, 0.0037, -0.208,
-0.0024; k = 0.95: 1.01312, 0.0034, -0.180, 0.0028 (the last two carry the homogeneous
-circle's +-0.2 % staircase jitter, which the graded circle does not share there).  Then one
+largest residual.  Then one
 calibrated solve per k checks that the calibration only rescales (same contact sets, forces
 divided by r) and prints the calibrated circle's distance from Eq. 39 at N = 40: a residual
 of the calibration, not a validation.
 k = 0 runs through the graded kernel (identical to the homogeneous solver, nu = 1/2).
 Every solve must report convergence; the CG iterations per contact solve are printed because
-the kernel r^-(1+k) is nearly flat and long-ranged as k -> -1: the Fourier preconditioner
-keeps them at about 18-40 per warm-started solve for k = -0.95 ... -0.9 over 32-181 per
-radius (8-9 at k = 0; 4 at k = 0.9, 0.95, where the kernel is nearly local).  Unpreconditioned, a cold
-solve of the pressed circle at k = -0.95 takes 117, 219, 429 iterations at 32, 64, 128 per
-radius (42 preconditioned), as a condition number growing like N^(1 - k) implies.  About
-15 min for |k| <= 0.75; the k < -0.75 runs cost most: at 181 per radius k = -0.95 needs 3.4
-times the matvecs of k = 0.
+the kernel r^-(1+k) is nearly flat and long-ranged as k -> -1 and the Fourier preconditioner
+must keep them bounded there.  ``--update`` writes three tables into docs/ (accuracy_griffith_graded_sweep,
+accuracy_griffith_graded, accuracy_griffith_graded_check), rendered into docs/accuracy.md by
+``python benchmarks/docs_tables.py``.  The k < -0.75 runs cost most (a condition number
+growing like N^(1 - k)).
 """
 
 from __future__ import annotations
@@ -74,7 +69,8 @@ def fit(Ns, rho, p):
 GRADED_EXPONENTS = tuple(k for k in sorted(CIRCLE_RATIO) if k != 0)
 
 
-def main(ks=GRADED_EXPONENTS, Ns=(32, 45, 64, 90, 128, 181)):
+def main(ks=GRADED_EXPONENTS, Ns=(32, 45, 64, 90, 128, 181), update=False):
+    record = _timing.provenance_record()
     eq42 = lambda N: bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N), graded_criterion="eq42")  # noqa: E731
     base, rows = {}, []
     for N in Ns:
@@ -95,6 +91,8 @@ def main(ks=GRADED_EXPONENTS, Ns=(32, 45, 64, 90, 128, 181)):
     headers = ["k", "N/radius", "F/F39", "scaled F/F39", "rho = scaled / (k = 0)", "matvecs", "CG it/solve", "pull s"]
     print(_timing.table(rows, headers), flush=True)
     summary = []
+    # the sweep pivoted for the docs: one row per k, scaled F/F39 (Eq. 42's constant) per N
+    sweep = {"+0.00": [f"{base[N]:.5f}" for N in Ns]}
     for k in ks:
         rho = []
         for N in Ns:
@@ -114,6 +112,7 @@ def main(ks=GRADED_EXPONENTS, Ns=(32, 45, 64, 90, 128, 181)):
                 ]
             )
             print(_timing.table(rows, headers), flush=True)
+        sweep[f"{k:+.2f}"] = [row[3] for row in rows[-len(Ns) :]]
         (r_inf, c), resid = fit(Ns, rho, 1.0)
         (r_half, _), _ = fit(Ns, rho, 0.5)
         u = max(abs(r_half - r_inf), resid)
@@ -157,19 +156,31 @@ def main(ks=GRADED_EXPONENTS, Ns=(32, 45, 64, 90, 128, 181)):
         )
     # the calibrated circle's distance from Eq. 39 is a residual of the calibration (it was
     # fitted to make it small), not a validation; the homogeneous circle's is (Kendall)
-    print(
-        _timing.table(
-            check,
-            [
-                "k",
-                "N/radius",
-                "same contact sets",
-                "F(eq42)/F(calibrated)",
-                "calibration residual: scaled F/F39 - 1",
-                "k = 0: F/F_K - 1",
-            ],
-        )
-    )
+    check_head = [
+        "k",
+        "N/radius",
+        "same contact sets",
+        "F(eq42)/F(calibrated)",
+        "calibration residual: scaled F/F39 - 1",
+        "k = 0: F/F_K - 1",
+    ]
+    print(_timing.table(check, check_head))
+    if update:
+        sweep_head = ["k", *(f"scaled F/F39, N = {N}" for N in Ns)]
+        sweep_rows = [[k, *v] for k, v in sorted(sweep.items(), key=lambda kv: float(kv[0]))]
+        _timing.write_doc_table("accuracy_griffith_graded_sweep", sweep_head, sweep_rows, record, runs=rows)
+        summary_head = [
+            "k",
+            "r = rho_inf (c/N fit)",
+            "c / r",
+            "max resid",
+            "rho_inf (c/sqrt N)",
+            "u",
+            "stored r",
+            "stored u",
+        ]
+        _timing.write_doc_table("accuracy_griffith_graded", summary_head, summary, record)
+        _timing.write_doc_table("accuracy_griffith_graded_check", check_head, check, record)
 
 
 if __name__ == "__main__":
@@ -180,4 +191,4 @@ if __name__ == "__main__":
     if "--quick" in args:
         kw.setdefault("ks", (-0.5, 0.5))
         kw["Ns"] = (32, 45, 64)
-    main(**kw)
+    main(**kw, update="--update" in args)
