@@ -1,13 +1,13 @@
 """Why the graded Griffith BEM misses Eq. 39: the criterion constant of Eq. 42 against the
 constant the discrete stress field implies.
 
-    python benchmarks/study_graded_criterion.py
+    python benchmarks/study_graded_criterion.py [--update]
 
 A flat circular punch detaches unstably (|d_c| grows with a, Eq. 38), so the pull-off is at or
 shortly after the first detachment: the moment the most stressed staircase cell of the edge
-reaches sigma_c.  (Not always the same moment: at 64 per radius the first event is the
-pull-off; at 32 and 128 a few isolated cells go first and the force still rises by 1-5 %
-(study_griffith_graded.py prints the pull-offs), so the prediction below is approximate.)
+reaches sigma_c.  (Not always the same moment: on some grids a few isolated cells go first
+and the force still rises a little (study_griffith_graded.py prints the pull-offs), so the
+prediction below is approximate.)
 From the pressed, non-adhesive state (a linear problem) this script reads that cell's stress
 in units of the continuum intensity, p ~ K_k s^((k-1)/2) with K_k from the exact pressure
 P (a^2 - r^2)^((k-1)/2) (theory sheet, section 5), and so the constant kappa for which the
@@ -16,12 +16,15 @@ The ratio kappa(Eq. 42) / kappa_implied then predicts F_A / F_A(Eq. 39) of the p
 
 Columns: the stress factor of a grid-aligned edge cell (top of the circle) and of the most
 stressed edge cell, kappa implied, kappa of Eq. 42, and their ratio.  Measured pull-offs to
-compare with: ``benchmarks/study_griffith_graded.py``.
+compare with: ``benchmarks/study_griffith_graded.py``.  ``--update`` writes the table to
+docs/accuracy_graded_criterion.json (rendered into docs/accuracy.md by
+``python benchmarks/docs_tables.py``).
 """
 
 from __future__ import annotations
 
 import math
+import sys
 
 import _timing  # noqa: F401
 import numpy as np
@@ -58,7 +61,8 @@ def stress_factors(k: float, per_radius: int) -> tuple[float, float]:
     return float(np.mean(top)) / unit, float(P[edge].max()) / unit
 
 
-def main(ks=(-0.75, -0.5, -0.25, 0.0, 0.25, 0.5, 0.75), Ns=(32, 64)):
+def main(ks=(-0.75, -0.5, -0.25, 0.0, 0.25, 0.5, 0.75), Ns=(32, 64), update=False):
+    record = _timing.provenance_record()
     rows = []
     for k in ks:
         F = T.graded_adhesion_force(E0=1.0, c0=1.0, k=k, radius=1.0, work=1.0) if k else math.sqrt(8 * math.pi * 4 / 3)
@@ -78,13 +82,11 @@ def main(ks=(-0.75, -0.5, -0.25, 0.0, 0.25, 0.5, 0.75), Ns=(32, 64)):
                     f"{kappa / implied:.4f}",
                 ]
             )
-    print(
-        _timing.table(
-            rows, ["k", "N/radius", "aligned cell", "largest cell", "kappa implied", "kappa Eq. 42", "predicted F/F39"]
-        ),
-        flush=True,
-    )
+    head = ["k", "N/radius", "aligned cell", "largest cell", "kappa implied", "kappa Eq. 42", "predicted F/F39"]
+    print(_timing.table(rows, head), flush=True)
+    if update:
+        _timing.write_doc_table("accuracy_graded_criterion", head, rows, record)
 
 
 if __name__ == "__main__":
-    main()
+    main(update="--update" in sys.argv)

@@ -1,6 +1,6 @@
 """Does grading change a square's strength relative to a circle's the same way in both BEMs?
 
-    python benchmarks/study_graded_shape_ratio.py [--quick]
+    python benchmarks/study_graded_shape_ratio.py [--quick | --full] [--update]
 
 The calibrated graded criterion (``bem_griffith.criterion``) fixes one factor per k on the
 circle; a square inherits it.  The Griffith solver's square/circle ratio does not depend on
@@ -14,9 +14,11 @@ areas, forces scaled to the nominal area, between
   (the graded process zone l_c^(1-k) = E_k rho^2 / w, ``bem_energy.potentials``),
 
 at k = 0.5.  The energy method is not a converged reference here: its circle alone still
-moves by 2-4 % per halving of l_c, so the table shows the trend, not a limit.  l_c / a = 0.02
-took 25 min per k = 0.5 face on this machine (the whole script about an hour); ``--quick``
-stops at 0.08.
+moves by percents per halving of l_c, so the table shows the trend, not a limit.  The default
+stops the energy BEM at l_c / a = 0.08; ``--full`` adds 0.04 and 0.02 (8 elements per l_c:
+400 per radius at 0.02, tens of minutes per face), ``--quick`` stops at 0.08 and 48 per
+radius.  ``--update`` writes the table to docs/accuracy_graded_shape_ratio.json (rendered
+into docs/accuracy.md by ``python benchmarks/docs_tables.py``).
 """
 
 from __future__ import annotations
@@ -75,7 +77,8 @@ def row(label, out):
     return [label, f"{r0:.4f}", f"{rk:.4f}", f"{rk / r0:.4f}"]
 
 
-def main(Ns=(32, 48, 64, 96), lcs=(0.32, 0.16, 0.08, 0.04, 0.02)):
+def main(Ns=(32, 48, 64, 96), lcs=(0.32, 0.16, 0.08), update=False):
+    record = _timing.provenance_record()
     headers = ["method", "square/circle k=0", f"square/circle k={K}", "D"]
     rows = []
     for N in Ns:
@@ -84,10 +87,15 @@ def main(Ns=(32, 48, 64, 96), lcs=(0.32, 0.16, 0.08, 0.04, 0.02)):
     for lc in lcs:
         rows.append(row(f"energy, l_c/a = {lc}", energy(lc)))
         print(_timing.table(rows, headers), flush=True)
+    if update:
+        _timing.write_doc_table("accuracy_graded_shape_ratio", headers, rows, record)
 
 
 if __name__ == "__main__":
+    update = "--update" in sys.argv
     if "--quick" in sys.argv:
-        main(Ns=(32, 48), lcs=(0.32, 0.16, 0.08))
+        main(Ns=(32, 48), lcs=(0.32, 0.16, 0.08), update=update)
+    elif "--full" in sys.argv:
+        main(lcs=(0.32, 0.16, 0.08, 0.04, 0.02), update=update)
     else:
-        main()
+        main(update=update)
