@@ -9,13 +9,16 @@
    and rotations against the grid: its "converged value" and the staircase spread around it.
 
     python benchmarks/study_energy_zero_range.py [--quick] [--no-griffith] [--faces circle,square]
-        [--ratios 0.32,0.16,...] [--epz 2] [--json PATH]
+        [--ratios 0.32,0.16,...] [--epz 2] [--json PATH] [--update]
 
 Long: the l_c = 0.01 a runs are 200 per radius, the Griffith triangle at 128 per radius takes
 minutes per rotation; --quick stops at 0.02 a and 64 per radius.  ``--json PATH`` stores each
 face's sequence with full precision (ratios, spacings, areas, raw and area-scaled forces, the
 command) under the key "<face>-epz<elements per l_c>", merged into the file if it exists: the
 zero-range estimator is validated on these (tests/test_zero_range_estimator.py).
+``--update`` writes the three tables of docs/accuracy.md (accuracy_energy_zero_range_ranges,
+accuracy_energy_zero_range_extrapolated, accuracy_energy_zero_range_griffith; rendered by
+``python benchmarks/docs_tables.py``).
 """
 
 from __future__ import annotations
@@ -29,7 +32,7 @@ import shlex
 import sys
 import time
 
-import _timing  # noqa: F401  (thread settings)
+import _timing  # thread settings first
 import numpy as np
 from _timing import table
 
@@ -111,7 +114,7 @@ def finite_ranges(name, ratios, epz=2.0, min_per_radius=24.0, record=None):
                 "wall_seconds": walls,
             }
         )
-    return np.array(ratios), np.array(scaled)
+    return np.array(ratios), np.array(scaled), [row[-1] for row in rows]
 
 
 def extrapolations(name, lc, F):
@@ -130,6 +133,7 @@ def extrapolations(name, lc, F):
         )
     print(f"{name}: extrapolated F_A / F_upper over windows of four ranges")
     print(table(rows, ("ratios", "fitted rate", "rate", "estimate", "sqrt law")), flush=True)
+    return rows
 
 
 def griffith(name, Ns, angles):
@@ -150,6 +154,7 @@ def griffith(name, Ns, angles):
             )
         rows.append([N] + [f"{v:.4f}" for v in vals] + [f"{np.mean(vals):.4f}", f"{time.perf_counter() - t:.0f}"])
         print(table(rows, ["N/radius"] + [f"{a:g} deg" for a in angles] + ["mean", "wall s"]), flush=True)
+    return rows
 
 
 def _git_commit():
@@ -193,6 +198,7 @@ if __name__ == "__main__":
     ap.add_argument("--ratios", default=None, help="comma-separated l_c / a (default 0.32 ... 0.01)")
     ap.add_argument("--epz", type=float, default=2.0, help="elements per process zone l_c")
     ap.add_argument("--json", default=None, help="store the sequences in this JSON file")
+    ap.add_argument("--update", action="store_true", help="write the docs tables (docs/accuracy_energy_zero_range_*)")
     args = ap.parse_args()
     quick = args.quick
     if args.ratios:
@@ -200,16 +206,49 @@ if __name__ == "__main__":
     else:
         ratios = (0.32, 0.16, 0.08, 0.04, 0.02) if quick else (0.32, 0.16, 0.08, 0.04, 0.02, 0.01)
     command = "python benchmarks/study_energy_zero_range.py " + " ".join(shlex.quote(x) for x in sys.argv[1:])
+    started = _timing.provenance_record()
+    ranges, windows = [], []
     for name in args.faces.split(","):
         rec = {} if args.json else None
-        lc, F = finite_ranges(name, ratios, epz=args.epz, record=rec)
+        lc, F, local = finite_ranges(name, ratios, epz=args.epz, record=rec)
         if args.json:
             rec.update({"command": command, "python": platform.python_version(), "git_commit": _git_commit()})
             store(args.json, f"{name}-epz{args.epz:g}", rec)
+        # local rates belong to the interior ranges (each fitted through it and its neighbours)
+        ranges.append([name, *(f"{f:.4f}" for f in F), *local[1:-1]])
         if len(lc) >= 4:
-            extrapolations(name, lc, F)
+            windows += [[name, *w] for w in extrapolations(name, lc, F)]
+    if args.update:
+        _timing.write_doc_table(
+            "accuracy_energy_zero_range_ranges",
+            ["face", *(f"F/F_up, l_c/a = {r:g}" for r in ratios), *(f"local rate at {r:g}" for r in ratios[1:-1])],
+            ranges,
+            started,
+        )
+        _timing.write_doc_table(
+            "accuracy_energy_zero_range_extrapolated",
+            ["face", "ratios", "F_0/F_up (fitted rate)", "rate", "estimate", "F_0/F_up (rate 1/2)"],
+            windows,
+            started,
+        )
     if args.no_griffith:
         sys.exit(0)
+    Ns = (32, 48, 64) if quick else (48, 64, 96, 128)
+    angles = (0.0, 15.0, 30.0, 45.0)
+    rotations = []
     for name in ("square", "triangle"):
         print(f"\n{name}: Griffith BEM, F_A / F_upper scaled to the nominal area, by rotation against the grid")
-        griffith(name, (32, 48, 64) if quick else (48, 64, 96, 128), (0.0, 15.0, 30.0, 45.0))
+        rows = griffith(name, Ns, angles)
+        # F = F_inf + c / N through the two finest resolutions
+        n1, n2 = rows[-2][0], rows[-1][0]
+        m1, m2 = float(rows[-2][-2]), float(rows[-1][-2])
+        inf = (n2 * m2 - n1 * m1) / (n2 - n1)
+        rotations += [[name, *row] for row in rows]
+        rotations.append([name, f"c/N through {n1}, {n2}", *("" for _ in angles), f"{inf:.4f}", ""])
+    if args.update:
+        _timing.write_doc_table(
+            "accuracy_energy_zero_range_griffith",
+            ["face", "N/radius", *(f"{a:g} deg" for a in angles), "mean", "wall s"],
+            rotations,
+            started,
+        )
