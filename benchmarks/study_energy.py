@@ -7,7 +7,10 @@
    ratios, with the rate a free fit finds (the default procedure and the cornered faces:
    benchmarks/study_energy_zero_range.py).
 
-    python benchmarks/study_energy.py [--quick]
+    python benchmarks/study_energy.py [--quick] [--update]
+
+``--update`` writes table 1 to docs/accuracy_energy_fixed_range.json (rendered into
+docs/accuracy.md by ``python benchmarks/docs_tables.py``).
 """
 
 from __future__ import annotations
@@ -16,7 +19,7 @@ import math
 import sys
 import time
 
-import _timing  # noqa: F401  (thread settings)
+import _timing  # thread settings first
 from _timing import table
 
 import bem_energy as be
@@ -30,7 +33,8 @@ def circle(range_=None):
     return cs.Scene(cs.Indenter(cs.Circle(A)), cs.Homogeneous(E, 0.0), cs.Adhesion(W, range_))
 
 
-def fixed_range(Ns):
+def fixed_range(Ns, update=False):
+    record = _timing.provenance_record()
     sc = circle(math.sqrt(0.16 * A * W / E))
     rows = []
     res = []
@@ -51,8 +55,11 @@ def fixed_range(Ns):
                 f"{dt:.1f}",
             )
         )
+    head = ("N/radius", "F_A", "rel. err", "err x N", "peak", "iterations", "wall s")
     print("Fixed range l_c = 0.16 a: F_A against N (error against the finest run)")
-    print(table(rows, ("N/radius", "F_A", "rel. err", "err x N", "peak", "iterations", "wall s")))
+    print(table(rows, head), flush=True)
+    if update:
+        _timing.write_doc_table("accuracy_energy_fixed_range", head, rows, record)
 
 
 def zero_range(ratios, epz=2.0):
@@ -97,5 +104,5 @@ def zero_range(ratios, epz=2.0):
 
 if __name__ == "__main__":
     quick = "--quick" in sys.argv
-    fixed_range((8, 12, 16, 24, 32) if quick else (8, 12, 16, 24, 32, 48, 64, 96, 128))
+    fixed_range((8, 12, 16, 24, 32) if quick else (8, 12, 16, 24, 32, 48, 64, 96, 128), update="--update" in sys.argv)
     zero_range((0.32, 0.16, 0.08) if quick else (0.32, 0.16, 0.08, 0.04, 0.02))

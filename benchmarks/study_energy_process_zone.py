@@ -7,7 +7,12 @@ cohesive zone is trapped by the mesh and F_A overshoots; this sets
 ``bem_energy.potentials.PROCESS_ZONE_ELEMENTS`` (the fewest for a converged result, and the
 default grid's count) per potential.
 
-    python benchmarks/study_energy_process_zone.py [--quick]
+    python benchmarks/study_energy_process_zone.py [--quick | --full] [--update]
+
+The default stops at 100 elements per radius; ``--full`` adds the sweeps that need 200
+(exponential at l_c = 0.02 a, Maugis-Dugdale at 0.16 a to 32 per l_c and at 0.08 a to 16).
+``--update`` writes the table to docs/accuracy_energy_process_zone.json (rendered into
+docs/accuracy.md by ``python benchmarks/docs_tables.py``).
 """
 
 from __future__ import annotations
@@ -16,7 +21,7 @@ import math
 import sys
 import time
 
-import _timing  # noqa: F401  (thread settings)
+import _timing  # thread settings first
 from _timing import table
 
 import bem_energy as be
@@ -41,21 +46,31 @@ def sweep(kind, ratio, per_lc):
         res.append((n, A / h, r.pulloff_force / FK, Fn / FK, dt))
     ref = res[-1][3]
     rows = [
-        (f"{n:g}", f"{N:.1f}", f"{f:.5f}", f"{fn:.5f}", f"{fn / ref - 1:+.2%}", f"{dt:.1f}") for n, N, f, fn, dt in res
+        [kind, f"{ratio:g}", f"{n:g}", f"{N:.1f}", f"{f:.5f}", f"{fn:.5f}", f"{fn / ref - 1:+.2%}", f"{dt:.1f}"]
+        for n, N, f, fn, dt in res
     ]
     print(f"\n{kind}, l_c = {ratio:g} a: F_A / F_Kendall against elements per l_c (change against the finest)")
-    print(table(rows, ("per l_c", "N/radius", "F/F_K", "scaled", "vs finest", "wall s")))
+    print(table(rows, HEADERS), flush=True)
+    return rows
+
+
+HEADERS = ("potential", "l_c/a", "per l_c", "N/radius", "F/F_K", "scaled", "vs finest", "wall s")
+QUICK = [("exponential", 0.16, (0.5, 1, 2, 4, 8)), ("maugis_dugdale", 0.32, (2, 4, 8, 16))]
+DEFAULT = [
+    ("exponential", 0.16, (0.5, 1, 2, 4, 8, 16)),
+    ("exponential", 0.04, (0.5, 1, 2, 3, 4)),
+    ("maugis_dugdale", 0.32, (2, 4, 8, 16, 32)),
+]
+FULL = [
+    ("exponential", 0.02, (0.5, 1, 2, 4)),
+    ("maugis_dugdale", 0.16, (0.5, 1, 2, 4, 8, 16, 32)),
+    ("maugis_dugdale", 0.08, (2, 4, 8, 16)),
+]
 
 
 if __name__ == "__main__":
-    quick = "--quick" in sys.argv
-    if quick:
-        sweep("exponential", 0.16, (0.5, 1, 2, 4, 8))
-        sweep("maugis_dugdale", 0.32, (2, 4, 8, 16))
-    else:
-        sweep("exponential", 0.16, (0.5, 1, 2, 4, 8, 16))
-        sweep("exponential", 0.04, (0.5, 1, 2, 3, 4))
-        sweep("exponential", 0.02, (0.5, 1, 2, 4))
-        sweep("maugis_dugdale", 0.32, (2, 4, 8, 16, 32))
-        sweep("maugis_dugdale", 0.16, (0.5, 1, 2, 4, 8, 16, 32))
-        sweep("maugis_dugdale", 0.08, (2, 4, 8, 16))
+    record = _timing.provenance_record()
+    sweeps = QUICK if "--quick" in sys.argv else DEFAULT + (FULL if "--full" in sys.argv else [])
+    rows = [row for kind, ratio, per_lc in sweeps for row in sweep(kind, ratio, per_lc)]
+    if "--update" in sys.argv:
+        _timing.write_doc_table("accuracy_energy_process_zone", HEADERS, rows, record)
