@@ -10,13 +10,11 @@ default tolerance.  Printed per face: F_A for each step count and the spread (ma
 A change of the algorithm that moves a range's F_A by less than this spread is within the
 method's noise.
 
-Measured at l_c = 0.04 a (50 per radius, steps 36 ... 44, collocated kernel): spread 2.9e-4
-(circle), 4.7e-4 (square), 1.0e-3 (equilateral triangle); F_A at the default 40 steps
-0.626133, 0.701456, 0.355840 (E* = 1, w = 0.02, a = 1, 2 / sqrt(pi) and the triangle's
-equivalent radius).
-
     python benchmarks/study_energy_noise.py [--ratio 0.04] [--steps 36,38,40,42,44]
-        [--faces circle,square,triangle] [--json PATH]
+        [--faces circle,square,triangle] [--json PATH] [--update]
+
+``--update`` writes the table to docs/performance_energy_noise.json (rendered into
+docs/performance.md by ``python benchmarks/docs_tables.py``).
 """
 
 from __future__ import annotations
@@ -26,7 +24,7 @@ import json
 import math
 import time
 
-import _timing  # noqa: F401  (thread settings)
+import _timing  # thread settings first
 from _timing import table
 
 import bem_energy as be
@@ -46,7 +44,9 @@ def main(argv=None):
     ap.add_argument("--steps", default="36,38,40,42,44")
     ap.add_argument("--faces", default="circle,square,triangle")
     ap.add_argument("--json", default=None)
+    ap.add_argument("--update", action="store_true", help="write docs/performance_energy_noise.json")
     args = ap.parse_args(argv)
+    record = _timing.provenance_record()
     steps = [int(s) for s in args.steps.split(",")]
     zs = be.ZeroRangeSettings()
     rows, out = [], {}
@@ -76,7 +76,10 @@ def main(argv=None):
             "forces": forces,
             "spread": spread,
         }
-    print(table(rows, ("face", "l_c/a", "per radius", *[f"steps {n}" for n in steps], "spread")))
+    head = ("face", "l_c/a", "per radius", *[f"steps {n}" for n in steps], "spread")
+    print(table(rows, head))
+    if args.update:
+        _timing.write_doc_table("performance_energy_noise", head, rows, record)
     if args.json:
         with open(args.json, "w") as fh:
             json.dump(out, fh, indent=1)
