@@ -7,8 +7,13 @@
    (set-up, one energy evaluation, the convergence test) against a continuation step.
 3. The 256 x 256 circle (127 elements per radius) at rho = 0.05 a, l_c = 2 Delta.
 4. The zero-range (JKR) limit of the circle with the default settings: time and error.
+5. Why the padded grid is rounded up to an FFT-friendly size: one FFT pair at a size with a
+   large prime factor against ``scipy.fft.next_fast_len`` of it.
 
-    python benchmarks/bench_energy.py [--skip-large]
+    python benchmarks/bench_energy.py [--skip-large] [--update]
+
+``--update`` writes docs/performance_energy_{minimisers,overhead,cases,fft_size}.json
+(rendered into docs/performance.md by ``python benchmarks/docs_tables.py``).
 """
 
 from __future__ import annotations
@@ -17,7 +22,7 @@ import math
 import sys
 import time
 
-import _timing  # noqa: F401  (thread settings)
+import _timing  # thread settings first
 import numpy as np
 import scipy.fft as sfft
 from _timing import median_time, table
@@ -39,7 +44,7 @@ def fft_pair(M):
 def minimisers():
     W = 0.02
     sc = circle(W, math.sqrt(0.16 * W))
-    rows, ref = [], None
+    rows, ref, t_ref = [], None, None
     for name in ("pk", "lbfgsb"):
         st = be.EnergySettings(grid=cs.Grid(elements_per_radius=32), minimiser=name)
         t = time.perf_counter()
@@ -47,10 +52,12 @@ def minimisers():
         dt = time.perf_counter() - t
         pair = fft_pair(tuple(r.info["padded_grid"]))
         ref = ref or r.pulloff_force
+        t_ref = t_ref or dt
         rows.append(
             (
                 name,
                 f"{dt:.2f}",
+                f"{dt / t_ref:.1f}",
                 f"{dt / pair:.0f}",
                 r.iterations,
                 r.info["evaluations"],
@@ -59,10 +66,10 @@ def minimisers():
                 f"{r.pulloff_force / ref - 1:+.1e}",
             )
         )
+    head = ("minimiser", "wall s", "/ pk", "FFT pairs", "iterations", "evaluations", "minimisations", "F_A", "vs pk")
     print(f"1. circle pull-off, l_c = 0.16 a, 32 per radius (padded {r.info['padded_grid']})")
-    print(
-        table(rows, ("minimiser", "wall s", "FFT pairs", "iterations", "evaluations", "minimisations", "F_A", "vs pk"))
-    )
+    print(table(rows, head), flush=True)
+    return head, rows
 
 
 def overhead():
@@ -81,8 +88,10 @@ def overhead():
         rows.append(
             (name, f"{t_over * 1e3:.1f}", f"{t_step * 1e3:.1f}", f"{t_over / t_step:.1%}", f"{t_setup * 1e3:.1f}")
         )
+    head = ("minimiser", "at minimum ms", "one step ms", "overhead share", "problem set-up ms")
     print(f"\n2. per-solve overhead, face grid {prob.n}, padded {prob.padded}")
-    print(table(rows, ("minimiser", "at minimum ms", "one step ms", "overhead share", "problem set-up ms")))
+    print(table(rows, head), flush=True)
+    return head, rows
 
 
 def large():
@@ -97,8 +106,11 @@ def large():
     FK = T.kendall_adhesion_force(E_star=1.0, radius=a, work=W)
     print(
         f"\n3. circle {r.info['grid']} (padded {r.info['padded_grid']}), rho = 0.05 a, l_c/a = {lc:.4f}: "
-        f"{dt:.1f} s wall, {r.iterations} iterations, F_A/F_K = {r.pulloff_force / FK:.4f}, converged {r.converged}"
+        f"{dt:.1f} s wall, {r.iterations} iterations, F_A/F_K = {r.pulloff_force / FK:.4f}, converged {r.converged}",
+        flush=True,
     )
+    grid = "x".join(map(str, r.info["grid"]))
+    return [f"circle {grid}, rho = 0.05 a, l_c = 2 Delta", f"{dt:.1f}", f"{r.pulloff_force / FK:.4f}", "", r.converged]
 
 
 def zero_range():
@@ -110,13 +122,39 @@ def zero_range():
     print(
         f"\n4. zero-range circle (default ratios {r.info['zero_range']['process_zone_ratios']}): {dt:.1f} s wall, "
         f"F_A/F_K - 1 = {r.pulloff_force / FK - 1:+.3%}, estimate {r.accuracy_estimate:.2%}, "
-        f"runs {[round(f / FK, 4) for f in r.info['zero_range']['pulloff_forces']]}"
+        f"runs {[round(f / FK, 4) for f in r.info['zero_range']['pulloff_forces']]}",
+        flush=True,
     )
+    ratios = ", ".join(f"{x:g}" for x in r.info["zero_range"]["process_zone_ratios"])
+    return [
+        f"zero-range circle, l_c/a = {ratios}",
+        f"{dt:.1f}",
+        f"{r.pulloff_force / FK:.4f}",
+        f"{r.accuracy_estimate:.2%}",
+        r.converged,
+    ]
+
+
+def fft_sizes(sizes=(202, 404, 808)):
+    rows = []
+    for n in sizes:
+        fast = sfft.next_fast_len(n, real=True)
+        t_n, t_fast = fft_pair((n, n)), fft_pair((fast, fast))
+        rows.append([f"{n}^2", f"{fast}^2", f"{t_n * 1e3:.2f}", f"{t_fast * 1e3:.2f}", f"{t_n / t_fast:.1f}"])
+    head = ("padded", "next fast", "ms per FFT pair", "next fast ms", "ratio")
+    print("\n5. FFT pair at a size with a large prime factor against the next fast size")
+    print(table(rows, head), flush=True)
+    return head, rows
 
 
 if __name__ == "__main__":
-    minimisers()
-    overhead()
-    zero_range()
+    record = _timing.provenance_record()
+    tables = {"minimisers": minimisers(), "overhead": overhead()}
+    cases = [zero_range()]
     if "--skip-large" not in sys.argv:
-        large()
+        cases.insert(0, large())
+    tables["cases"] = (("case", "wall s", "F_A/F_K", "estimate", "converged"), cases)
+    tables["fft_size"] = fft_sizes()
+    if "--update" in sys.argv:
+        for name, (head, rows) in tables.items():
+            _timing.write_doc_table(f"performance_energy_{name}", head, rows, record)
