@@ -73,6 +73,34 @@ def _check_keys(section: str, d: dict, allowed: AbstractSet[str], required: Abst
 
 
 def shape_from_dict(d: dict, *, base_dir: Path | None = None, section: str = "indenter") -> shapes.Shape:
+    """Build a face shape from its table of a scene file (the module's schema).
+
+    Parameters
+    ----------
+    d : dict
+        The shape's table: ``shape`` (a key of :data:`SHAPE_KEYS`), that shape's required and
+        optional keys, and optionally ``rotation_deg`` (degrees, about the centroid) and
+        ``mirror`` (bool, x -> -x about the centroid).  The indenter's table may also hold the
+        profile's keys, which are read elsewhere.
+    base_dir : pathlib.Path or None, optional
+        Directory a relative image ``path`` is taken from (the scene file's); the current
+        directory when None.
+    section : str, optional
+        Dotted name of the table in the scene file, used in error messages
+        (``"indenter"``; nested parts get ``"indenter.parts[0]"`` etc.).
+
+    Returns
+    -------
+    contact_scene.Shape
+        The shape, rotated and mirrored as asked (shapes with a rotation parameter of their own
+        take ``rotation_deg`` directly and keep their closed forms).
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming the offending key (e.g. ``indenter.radius``): a missing or unknown shape, a
+        missing required key, an unknown key, or a value out of the shape's allowed range.
+    """
     if not isinstance(d, dict) or "shape" not in d:
         raise SceneError(f"{section}.shape", f"is required; one of: {', '.join(sorted(SHAPE_KEYS))}")
     kind = d["shape"]
@@ -211,6 +239,27 @@ def _material_from_dict(d: dict):
 
 
 def scene_from_dict(d: dict, *, base_dir: Path | None = None) -> Scene:
+    """Build a scene from the parsed tables of a scene file.
+
+    Parameters
+    ----------
+    d : dict
+        The whole file as a dict (the module's schema): ``indenter``, ``material`` and
+        ``adhesion`` required; ``name``, ``description``, ``loading`` and ``outputs`` optional.
+    base_dir : pathlib.Path or None, optional
+        Directory relative paths in the file (image faces) are taken from.
+
+    Returns
+    -------
+    contact_scene.Scene
+        The validated scene.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming the field (``adhesion.work_of_adhesion``, ``loading.turning_points``, ...) of a
+        missing, unknown, wrongly typed or out-of-range entry.
+    """
     _check_keys(
         "scene",
         d,
@@ -253,6 +302,24 @@ def scene_from_dict(d: dict, *, base_dir: Path | None = None) -> Scene:
 
 
 def load_scene(path) -> Scene:
+    """Read a scene file (TOML, the module's schema).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The scene file; an image face's relative ``path`` is taken from its directory.
+
+    Returns
+    -------
+    contact_scene.Scene
+        The validated scene; a file without ``name`` gets the file's stem as its name.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        With field ``file`` when the file cannot be read, is not UTF-8 or not valid TOML;
+        otherwise naming the offending field, as :func:`scene_from_dict`.
+    """
     path = Path(path)
     try:
         text = path.read_bytes().decode("utf-8")
@@ -273,7 +340,30 @@ def load_scene(path) -> Scene:
 
 
 def summarise(scene: Scene) -> dict:
-    """Geometry and closed-form bounds of a scene (``crossval scene check``)."""
+    """Geometry and closed-form bounds of a scene (``crossval scene check``).
+
+    Parameters
+    ----------
+    scene : contact_scene.Scene
+        The scene to describe.
+
+    Returns
+    -------
+    dict
+        Name, shape, profile and material kinds; the face's area, nominal area, filling factor,
+        equivalent radius and incircle; the work of adhesion.  For a flat punch, the
+        closed-form estimates of :mod:`contact_scene.theory`: ``stiffness_estimate`` (Eq. 9 or
+        34), ``upper_bound_force``/``upper_bound_approach`` (Eqs. 13-14, 24; Eqs. 38, 39, 41 for a
+        graded half-space, on the circle of equal area), ``lower_bound_force``/
+        ``lower_bound_approach`` (Eqs. 18-19 on the incircle) and, for a circle, Kendall's or
+        the graded punch's force, approach and stiffness; for a curved homogeneous profile,
+        ``jkr_force``.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming the entry of the summary that evaluates to a non-finite number.
+    """
     shape = scene.indenter.shape
     inc = shape.incircle()
     w = scene.adhesion.work_of_adhesion

@@ -25,23 +25,53 @@ MIN_INCIRCLE_CELLS = 4
 
 @dataclass(frozen=True, eq=False)
 class Raster:
+    """A face on a square grid: the cells whose centres lie in the shape.
+
+    Built by :func:`rasterise` and :func:`rasterise_periodic` (the module's rule fixes which
+    cells belong to the face); the solvers discretise the half-space on its cells.
+
+    Parameters
+    ----------
+    mask : numpy.ndarray
+        Boolean (nx, ny) array, True on the cells of the face, indexed ``mask[ix, iy]`` with x
+        along axis 0.
+    spacing : float
+        Side of the square cells, > 0 (the scene's length unit).
+    origin : tuple of float
+        (x, y) of the centre of cell (0, 0).
+    """
+
     mask: np.ndarray  # bool, [ix, iy]
     spacing: float
     origin: tuple[float, float]  # centre of cell (0, 0)
 
     @property
     def shape(self) -> tuple[int, int]:
+        """(nx, ny), the number of cells along x and y."""
         return self.mask.shape
 
     @property
     def cell_area(self) -> float:
+        """Area of one cell, spacing^2."""
         return self.spacing**2
 
     @property
     def area(self) -> float:
+        """Area of the face on the grid: the number of its cells times spacing^2.
+
+        It differs from the shape's area by the staircase of the boundary.
+        """
         return float(np.count_nonzero(self.mask)) * self.spacing**2
 
     def centres(self) -> tuple[np.ndarray, np.ndarray]:
+        """Coordinates of the cell centres.
+
+        Returns
+        -------
+        x, y : numpy.ndarray
+            Two (nx, ny) arrays (``indexing="ij"``): the centre of cell (ix, iy) is
+            ``(x[ix, iy], y[ix, iy])``.
+        """
         nx, ny = self.mask.shape
         x = self.origin[0] + self.spacing * np.arange(nx)
         y = self.origin[1] + self.spacing * np.arange(ny)
@@ -51,9 +81,35 @@ class Raster:
 def rasterise(
     shape: Shape, spacing: float, *, min_incircle_cells: float = MIN_INCIRCLE_CELLS, field: str = "grid.spacing"
 ) -> Raster:
-    """Cells of side ``spacing`` whose centres lie in ``shape`` (see the module rule).
+    """Cells of side ``spacing`` whose centres lie in ``shape`` (the module's rule).
 
-    Refuses a grid so coarse that fewer than ``min_incircle_cells`` cells span the incircle.
+    The grid is anchored at the shape's centroid, so a shape rotated together with its grid gives
+    the same cells; the raster is cropped to the face plus one empty ring of cells.
+
+    Parameters
+    ----------
+    shape : contact_scene.Shape
+        The face to rasterise.
+    spacing : float
+        Side of the cells, a finite number > 0 (the scene's length unit).
+    min_incircle_cells : float, optional
+        Fewest cells allowed across the diameter of the face's incircle (:data:`MIN_INCIRCLE_CELLS`
+        by default): a coarser grid cannot represent the face.
+    field : str, optional
+        The name a :class:`~contact_scene.SceneError` gives the spacing (the scene field it came
+        from), ``"grid.spacing"`` by default.
+
+    Returns
+    -------
+    Raster
+        The face's cells, with ``origin`` at the centre of cell (0, 0).
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming ``field``: a spacing that is not a finite number > 0, one with fewer than
+        ``min_incircle_cells`` cells across the incircle (the message gives the largest spacing
+        allowed), a raster of more than 2^31 cells, or one in which no cell centre lies in the face.
     """
     if not (isinstance(spacing, (int, float)) and math.isfinite(spacing) and spacing > 0):
         raise SceneError(field, f"must be a finite number > 0 (got {spacing!r})")
@@ -91,11 +147,35 @@ def rasterise(
 def rasterise_periodic(
     shape: Shape, spacing: float, period: float, *, min_incircle_cells: float = MIN_INCIRCLE_CELLS
 ) -> Raster:
-    """The face in one periodic cell: a (period / spacing)^2 grid centred on the face's
-    centroid, with the same cells (same anchor rule) as :func:`rasterise` gives.
+    """The face in one cell of a periodic array: a (period / spacing)^2 grid.
 
-    ``period`` must be a whole number of ``spacing`` (see ``Grid.spacing_for``) and the face
-    must fit in the cell without touching its copies (one empty cell between them)."""
+    The grid is centred on the face's centroid and gives the same cells (same anchor rule) as
+    :func:`rasterise`; the boundary-element methods repeat it with period ``period`` in x and y.
+
+    Parameters
+    ----------
+    shape : contact_scene.Shape
+        The face in one periodic cell.
+    spacing : float
+        Side of the cells, a finite number > 0.
+    period : float
+        Side of the periodic cell, a whole number of ``spacing`` (see
+        :meth:`contact_scene.Grid.spacing_for`), large enough for the face to fit with one empty
+        cell between it and its copies.
+    min_incircle_cells : float, optional
+        Fewest cells allowed across the diameter of the face's incircle, as for :func:`rasterise`.
+
+    Returns
+    -------
+    Raster
+        An (n, n) raster, n = period / spacing, with the face in the middle.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming ``grid.period``: a period that is not a whole number of elements, or too small for
+        the face and its gap of one element; naming ``grid.spacing``: as :func:`rasterise`.
+    """
     n = round(period / spacing)
     if n < 1 or abs(n * spacing - period) > 1e-9 * period:
         raise SceneError("grid.period", f"the period {period:g} is not a whole number of elements of side {spacing:g}")

@@ -1,9 +1,14 @@
 """Closed-form theory of adhesive flat punches (the formula sheet, ``shared/theory.md``).
 
-All functions are keyword-only, in consistent units (SI recommended).  Sign conventions
-follow the sheet: an approach d < 0 means the punch is pulled; a force F < 0 is tensile;
+The functions take their physical arguments by keyword, in consistent units (the
+parameter descriptions give SI units; any consistent set works).  Sign conventions follow
+the sheet: an approach d < 0 means the punch is pulled; a force F < 0 is tensile;
 "adhesion force" F_A is the magnitude of the largest tensile force.  ``E_star`` is
 E / (1 - nu^2) of a homogeneous half-space; graded functions take E0, c0 and k.
+
+Every equation number (Eq. N) is that of the formula sheet, which restates the equations of
+the source paper (Popov, Pohrt & Li, Friction 5(3), 2017) and adds the ones derived for this
+package; each function's References name the papers the closed form comes from.
 """
 
 from __future__ import annotations
@@ -62,42 +67,226 @@ __all__ = [
 
 
 def kendall_stiffness(*, E_star: float, radius: float) -> float:
-    """Eq. 1: K = 2 E* a."""
+    """Normal stiffness of a circular flat punch, K = 2 E* a (Eq. 1).
+
+    Parameters
+    ----------
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2) of the homogeneous half-space (Pa), > 0.
+    radius : float
+        Punch radius a (m), > 0.
+
+    Returns
+    -------
+    float
+        K = dF/dd of the fully attached punch (N/m).
+
+    References
+    ----------
+    - K. Kendall, "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return 2.0 * E_star * radius
 
 
 def kendall_energy(*, E_star: float, radius: float, approach: float, work: float) -> float:
-    """Eq. 2: U = E* a d^2 - pi a^2 w."""
+    """Total energy of an attached circular flat punch, U = E* a d^2 - pi a^2 w (Eq. 2).
+
+    Elastic energy at approach d minus the adhesion energy of the contact of radius a; its
+    minimum over a at fixed d gives the critical radius (Eq. 3).
+
+    Parameters
+    ----------
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2) of the homogeneous half-space (Pa), > 0.
+    radius : float
+        Punch radius a (m), > 0.
+    approach : float
+        Approach d of the punch (m); d < 0 when it is pulled.
+    work : float
+        Work of adhesion w per unit area (J/m^2), >= 0.
+
+    Returns
+    -------
+    float
+        U (J).
+
+    References
+    ----------
+    - K. Kendall, "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return E_star * radius * approach**2 - math.pi * radius**2 * work
 
 
 def critical_radius(*, E_star: float, approach: float, work: float) -> float:
-    """Eq. 3: a_c = E* d^2 / (2 pi w), the radius in equilibrium at approach d."""
+    """Critical radius at a given approach, a_c = E* d^2 / (2 pi w) (Eq. 3).
+
+    The radius of the contact in equilibrium (dU/da = 0 in Eq. 2) at approach d.
+
+    Parameters
+    ----------
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2) of the homogeneous half-space (Pa), > 0.
+    approach : float
+        Approach d of the punch (m); d < 0 when it is pulled.
+    work : float
+        Work of adhesion w per unit area (J/m^2), > 0.
+
+    Returns
+    -------
+    float
+        a_c (m).
+
+    References
+    ----------
+    - K. Kendall, "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return E_star * approach**2 / (2.0 * math.pi * work)
 
 
 def kendall_critical_approach(*, E_star: float, radius: float, work: float) -> float:
-    """Eq. 4: d_c = -sqrt(2 pi a w / E*) (negative: pulled)."""
+    """Critical approach of a circular flat punch, d_c = -sqrt(2 pi a w / E*) (Eq. 4).
+
+    The approach at which the punch of radius a detaches.
+
+    Parameters
+    ----------
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2) of the homogeneous half-space (Pa), > 0.
+    radius : float
+        Punch radius a (m), > 0.
+    work : float
+        Work of adhesion w per unit area (J/m^2), >= 0.
+
+    Returns
+    -------
+    float
+        d_c (m), <= 0: the punch is pulled.
+
+    References
+    ----------
+    - K. Kendall, "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return -math.sqrt(2.0 * math.pi * radius * work / E_star)
 
 
 def kendall_detachment_force(*, E_star: float, radius: float, work: float) -> float:
-    """Eq. 5: F_c = K d_c = -sqrt(8 pi E* w a^3) (negative: tensile)."""
+    """Force at detachment of a circular flat punch, F_c = K d_c = -sqrt(8 pi E* w a^3) (Eq. 5).
+
+    Parameters
+    ----------
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2) of the homogeneous half-space (Pa), > 0.
+    radius : float
+        Punch radius a (m), > 0.
+    work : float
+        Work of adhesion w per unit area (J/m^2), >= 0.
+
+    Returns
+    -------
+    float
+        F_c (N), <= 0: tensile.
+
+    See Also
+    --------
+    kendall_adhesion_force : its magnitude (Eq. 6).
+
+    References
+    ----------
+    - K. Kendall, "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return -math.sqrt(8.0 * math.pi * E_star * work * radius**3)
 
 
 def kendall_adhesion_force(*, E_star: float, radius: float, work: float) -> float:
-    """Eq. 6: F_A = sqrt(8 pi E* w a^3)."""
+    """Adhesion force of a circular flat punch, F_A = sqrt(8 pi E* w a^3) (Eq. 6).
+
+    Kendall's pull-off force: the magnitude of the largest tensile force.
+
+    Parameters
+    ----------
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2) of the homogeneous half-space (Pa), > 0.
+    radius : float
+        Punch radius a (m), > 0.
+    work : float
+        Work of adhesion w per unit area (J/m^2), >= 0.
+
+    Returns
+    -------
+    float
+        F_A (N), >= 0.
+
+    References
+    ----------
+    - K. Kendall, "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return math.sqrt(8.0 * math.pi * E_star * work * radius**3)
 
 
 def kendall_energies_at_detachment(*, radius: float, work: float) -> tuple[float, float]:
-    """Eqs. 7-8: (U_el, U_ad) = (2 pi a^2 w, pi a^2 w) at the moment of detachment."""
+    """Elastic and adhesion energies at detachment, (2 pi a^2 w, pi a^2 w) (Eqs. 7-8).
+
+    Parameters
+    ----------
+    radius : float
+        Punch radius a (m), > 0.
+    work : float
+        Work of adhesion w per unit area (J/m^2), >= 0.
+
+    Returns
+    -------
+    U_el : float
+        Elastic energy 2 pi a^2 w at the moment of detachment (J).
+    U_ad : float
+        Adhesion energy pi a^2 w of the contact (J).
+
+    References
+    ----------
+    - K. Kendall, "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return 2.0 * math.pi * radius**2 * work, math.pi * radius**2 * work
 
 
 def flat_circle_energy_release_rate(*, force: float, E_star: float, radius: float) -> float:
-    """G = F^2 / (8 pi E* a^3) at the edge of a flat circular contact carrying force F (Sect. 1)."""
+    """Energy release rate at the edge of a flat circular contact, G = F^2 / (8 pi E* a^3).
+
+    Equivalently K_I = F / (2 a sqrt(pi a)) and G = K_I^2 / (2 E*) (formula sheet, section 1);
+    setting G = w gives Kendall's detachment force (Eq. 5).
+
+    Parameters
+    ----------
+    force : float
+        Normal force F carried by the contact (N); the sign does not matter.
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2) of the homogeneous half-space (Pa), > 0.
+    radius : float
+        Punch radius a (m), > 0.
+
+    Returns
+    -------
+    float
+        G (J/m^2), >= 0.
+
+    References
+    ----------
+    - K. Kendall, "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return force**2 / (8.0 * math.pi * E_star * radius**3)
 
 
@@ -110,32 +299,162 @@ SQUARE_BETA = 1.021
 
 
 def compact_shape_stiffness(*, E_star: float, area: float, beta: float = 1.0) -> float:
-    """Eq. 9: K ~ 2 E* beta sqrt(A/pi) (beta = 1.021 for a square, <= 1.021 for rounded shapes)."""
+    """Stiffness of a compact flat punch of any face shape, K ~ 2 E* beta sqrt(A/pi) (Eq. 9).
+
+    An approximation: the circle of the same area with a shape factor beta (1.021 for the
+    square, :data:`SQUARE_BETA`; at most 1.021 for rounded shapes).
+
+    Parameters
+    ----------
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2) of the homogeneous half-space (Pa), > 0.
+    area : float
+        Face area A (m^2), > 0.
+    beta : float, optional
+        Shape factor beta, > 0; 1 (the circle) by default.
+
+    Returns
+    -------
+    float
+        K (N/m).
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return 2.0 * E_star * beta * math.sqrt(area / math.pi)
 
 
 def upper_bound_force(*, E_star: float, work: float, area: float, filling_factor: float = 1.0) -> float:
-    """Eq. 13 (and Eq. 24 with filling factor phi): sqrt(8 pi E* phi w (A/pi)^(3/2))."""
+    """Upper bound of the adhesion force of a face, sqrt(8 pi E* phi w (A/pi)^(3/2)) (Eqs. 13, 24).
+
+    Kendall's force (Eq. 6) for the circle of the same area; with a filling factor phi the
+    work of adhesion becomes phi w (Eq. 24), so the bound goes like sqrt(phi).
+
+    Parameters
+    ----------
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2) of the homogeneous half-space (Pa), > 0.
+    work : float
+        Work of adhesion w per unit area (J/m^2), >= 0.
+    area : float
+        Face area A (m^2), > 0.
+    filling_factor : float, optional
+        Fraction phi of the nominal area that adheres, 0 < phi <= 1 (Eq. 24); 1 by default.
+
+    Returns
+    -------
+    float
+        F_A,upper (N), >= 0.
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return math.sqrt(8.0 * math.pi * E_star * filling_factor * work * (area / math.pi) ** 1.5)
 
 
 def upper_bound_approach(*, E_star: float, work: float, area: float, filling_factor: float = 1.0) -> float:
-    """Eq. 14: d_c,upper = -sqrt(2 pi phi w sqrt(A/pi) / E*)."""
+    """Approach at the upper bound, d_c,upper = -sqrt(2 pi phi w sqrt(A/pi) / E*) (Eq. 14).
+
+    Parameters
+    ----------
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2) of the homogeneous half-space (Pa), > 0.
+    work : float
+        Work of adhesion w per unit area (J/m^2), >= 0.
+    area : float
+        Face area A (m^2), > 0.
+    filling_factor : float, optional
+        Fraction phi of the nominal area that adheres, 0 < phi <= 1 (Eq. 24); 1 by default.
+
+    Returns
+    -------
+    float
+        d_c,upper (m), <= 0.
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return -math.sqrt(2.0 * math.pi * filling_factor * work * math.sqrt(area / math.pi) / E_star)
 
 
 def holm_radius(*, stiffness: float, E_star: float) -> float:
-    """Eqs. 15-17: radius of the circle with the same stiffness, a_H = K / (2 E*)."""
+    """Holm radius a_H = K / (2 E*), the radius of the circle with the same stiffness (Eqs. 15-17).
+
+    Parameters
+    ----------
+    stiffness : float
+        Stiffness K of the face (N/m), > 0.
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2) of the homogeneous half-space (Pa), > 0.
+
+    Returns
+    -------
+    float
+        a_H (m).
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return stiffness / (2.0 * E_star)
 
 
 def lower_bound_force(*, E_star: float, work: float, incircle_radius: float) -> float:
-    """Eq. 18: F_A,lower = sqrt(8 pi E* w a_in^3)."""
+    """Lower bound of the adhesion force of a face, F_A,lower = sqrt(8 pi E* w a_in^3) (Eq. 18).
+
+    Kendall's force (Eq. 6) of the largest inscribed circle.
+
+    Parameters
+    ----------
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2) of the homogeneous half-space (Pa), > 0.
+    work : float
+        Work of adhesion w per unit area (J/m^2), >= 0.
+    incircle_radius : float
+        Radius a_in of the largest circle inscribed in the face (m), > 0.
+
+    Returns
+    -------
+    float
+        F_A,lower (N), >= 0.
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return kendall_adhesion_force(E_star=E_star, radius=incircle_radius, work=work)
 
 
 def lower_bound_approach(*, E_star: float, work: float, incircle_radius: float) -> float:
-    """Eq. 19: d_c,lower = -sqrt(2 pi a_in w / E*)."""
+    """Approach at the lower bound, d_c,lower = -sqrt(2 pi a_in w / E*) (Eq. 19).
+
+    Parameters
+    ----------
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2) of the homogeneous half-space (Pa), > 0.
+    work : float
+        Work of adhesion w per unit area (J/m^2), >= 0.
+    incircle_radius : float
+        Radius a_in of the largest circle inscribed in the face (m), > 0.
+
+    Returns
+    -------
+    float
+        d_c,lower (m), <= 0.
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return kendall_critical_approach(E_star=E_star, radius=incircle_radius, work=work)
 
 
@@ -145,8 +464,24 @@ def lower_bound_approach(*, E_star: float, work: float, incircle_radius: float) 
 
 
 def element_energy_constant() -> float:
-    """Eq. 20: (2/pi) [ln(1 + sqrt 2) - (sqrt 2 - 1)/3] = 0.4732010044..., the energy released
-    (in units of sigma^2 Delta^3 / E*) when a uniformly loaded square element is unloaded."""
+    """Energy constant of one square element, (2/pi) [ln(1 + sqrt 2) - (sqrt 2 - 1)/3] (Eq. 20).
+
+    The energy released when the uniform stress sigma on one square element of side Delta
+    drops to zero is this constant times sigma^2 Delta^3 / E*.  It equals J_0 / (2 pi), with
+    J_0 the integral of 1/abs(x - x') over two unit squares (:func:`graded_two_square_integral`).
+
+    Returns
+    -------
+    float
+        0.4732010044..., dimensionless.
+
+    References
+    ----------
+    - R. Pohrt, V.L. Popov, "Adhesive contact simulation of elastic solids using local mesh-dependent
+      detachment criterion in boundary elements method", Facta Universitatis, Mech. Eng. 13(1):3-10 (2015).
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return (2.0 / math.pi) * (math.log(1.0 + math.sqrt(2.0)) - (math.sqrt(2.0) - 1.0) / 3.0)
 
 
@@ -154,7 +489,32 @@ ELEMENT_ENERGY_CONSTANT = element_energy_constant()
 
 
 def critical_stress(*, E_star: float, work: float, spacing: float) -> float:
-    """Eq. 22: sigma_c = sqrt(E* w / (0.473201 Delta))."""
+    """Critical tensile stress of the local detachment criterion, sqrt(E* w / (0.473201 Delta)) (Eq. 22).
+
+    An element detaches when its tensile stress exceeds sigma_c: the energy it releases
+    (Eq. 20) then exceeds the adhesion energy w Delta^2 of its area.
+
+    Parameters
+    ----------
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2) of the homogeneous half-space (Pa), > 0.
+    work : float
+        Work of adhesion w per unit area (J/m^2), >= 0.
+    spacing : float
+        Element side Delta of the boundary-element grid (m), > 0.
+
+    Returns
+    -------
+    float
+        sigma_c (Pa), >= 0.
+
+    References
+    ----------
+    - R. Pohrt, V.L. Popov, "Adhesive contact simulation of elastic solids using local mesh-dependent
+      detachment criterion in boundary elements method", Facta Universitatis, Mech. Eng. 13(1):3-10 (2015).
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return math.sqrt(E_star * work / (ELEMENT_ENERGY_CONSTANT * spacing))
 
 
@@ -164,34 +524,170 @@ def critical_stress(*, E_star: float, work: float, spacing: float) -> float:
 
 
 def filling_energy(*, E_star: float, work: float, radius: float, approach: float, filling) -> float:
-    """Eq. 25: U = E* a d^2 - 2 pi w int_0^a phi(r) r dr (``filling`` is the callable phi)."""
+    """Total energy with a radial filling factor, U = E* a d^2 - 2 pi w int_0^a phi(r) r dr (Eq. 25).
+
+    Parameters
+    ----------
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2) of the homogeneous half-space (Pa), > 0.
+    work : float
+        Work of adhesion w per unit area (J/m^2), >= 0.
+    radius : float
+        Punch radius a (m), > 0.
+    approach : float
+        Approach d of the punch (m); d < 0 when it is pulled.
+    filling : callable
+        phi(r), the fraction of the circle of radius r that adheres (0 <= phi <= 1); called with
+        a float.
+
+    Returns
+    -------
+    float
+        U (J); the integral by adaptive quadrature.
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     adhering_moment, _ = integrate.quad(lambda r: filling(r) * r, 0.0, radius, limit=200)
     return E_star * radius * approach**2 - 2.0 * math.pi * work * adhering_moment
 
 
 def filling_equilibrium_approach(*, E_star: float, work: float, radius: float, filling_at_radius: float) -> float:
-    """Eq. 27: d = -sqrt(2 pi phi(a) a w / E*)."""
+    """Equilibrium approach with a filling factor, d = -sqrt(2 pi phi(a) a w / E*) (Eq. 27).
+
+    Parameters
+    ----------
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2) of the homogeneous half-space (Pa), > 0.
+    work : float
+        Work of adhesion w per unit area (J/m^2), >= 0.
+    radius : float
+        Punch radius a (m), > 0.
+    filling_at_radius : float
+        phi(a), the filling factor at the contact's edge, 0 <= phi <= 1.
+
+    Returns
+    -------
+    float
+        d (m), <= 0.
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return -math.sqrt(2.0 * math.pi * filling_at_radius * radius * work / E_star)
 
 
 def filling_adhesion_force(*, E_star: float, work: float, radius: float, filling_at_radius: float) -> float:
-    """Eq. 28: F = sqrt(8 pi E* a^3 phi(a) w)."""
+    """Force in equilibrium with a filling factor, F = sqrt(8 pi E* a^3 phi(a) w) (Eq. 28).
+
+    Parameters
+    ----------
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2) of the homogeneous half-space (Pa), > 0.
+    work : float
+        Work of adhesion w per unit area (J/m^2), >= 0.
+    radius : float
+        Punch radius a (m), > 0.
+    filling_at_radius : float
+        phi(a), the filling factor at the contact's edge, 0 <= phi <= 1.
+
+    Returns
+    -------
+    float
+        The magnitude of the tensile force F (N), >= 0.
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return math.sqrt(8.0 * math.pi * E_star * radius**3 * filling_at_radius * work)
 
 
 def constant_force_filling(*, core_radius: float):
-    """Eq. 29: phi(a) = (a0/a)^3 (for a >= a0) makes Eq. 28 independent of a."""
+    """Filling factor phi(a) = min(1, (a0/a)^3) for which the force of Eq. 28 is constant (Eq. 29).
+
+    Parameters
+    ----------
+    core_radius : float
+        Radius a0 of the fully filled core (m), > 0.
+
+    Returns
+    -------
+    callable
+        phi(a), taking a float or an array of radii and returning the same shape.
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return lambda a: np.minimum(1.0, (core_radius / np.asarray(a, float)) ** 3)
 
 
 def filling_is_stable(*, radius: float, filling, step: float | None = None) -> bool:
-    """Eq. 30: shrinking is stable while d(a phi(a))/da > 0 (central difference)."""
+    """Whether the shrinking contact is stable at radius a: d(a phi(a))/da > 0 (Eq. 30).
+
+    The derivative by a central difference.
+
+    Parameters
+    ----------
+    radius : float
+        Punch radius a (m), > 0.
+    filling : callable
+        phi(r), the fraction of the circle of radius r that adheres (0 <= phi <= 1); called with
+        a float.
+    step : float or None, optional
+        Step h of the central difference (m), > 0 and < radius; 1e-6 radius by default.
+
+    Returns
+    -------
+    bool
+        True while shrinking is stable.
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     h = step if step is not None else 1e-6 * radius
     return (radius + h) * filling(radius + h) - (radius - h) * filling(radius - h) > 0
 
 
 def filling_last_stable_radius(*, filling, radius_min: float, radius_max: float) -> float:
-    """Eq. 31: the radius where d(a phi(a))/da = 0, bracketed in [radius_min, radius_max]."""
+    """Radius of the last stable state, where d(a phi(a))/da = 0 (Eq. 31).
+
+    The root of the derivative (central differences) by Brent's method.
+
+    Parameters
+    ----------
+    filling : callable
+        phi(r), the fraction of the circle of radius r that adheres (0 <= phi <= 1); called with
+        a float.
+    radius_min : float
+        Lower end of the bracket (m), > 0.
+    radius_max : float
+        Upper end of the bracket (m), > radius_min; the derivative must change sign between the two.
+
+    Returns
+    -------
+    float
+        The radius (m), to 1e-14 radius_max.
+
+    Raises
+    ------
+    ValueError
+        When the derivative has the same sign at both ends of the bracket.
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
 
     def stability_slope(a):
         h = 1e-7 * a
@@ -206,17 +702,92 @@ def filling_last_stable_radius(*, filling, radius_min: float, radius_max: float)
 
 
 def graded_green_coefficient(*, E0: float, c0: float, k: float) -> float:
-    """Surface Green's function w(r) = A_k P / r^(1+k): A_k = (3+k) c0^k / (2 pi (1+k)(2+k) E0)."""
+    """Coefficient A_k of the graded half-space's surface Green's function w(r) = A_k P / r^(1+k).
+
+    A_k = (3+k) c0^k / (2 pi (1+k)(2+k) E0), for E(z) = E0 (z/c0)^k (Eq. 32) and Poisson ratio
+    nu = 1/(2+k) (Eq. 33); k = 0 gives 1/(pi E*) with E* = 4 E0 / 3 (formula sheet, section 5).
+
+    Parameters
+    ----------
+    E0 : float
+        Modulus of the graded half-space at the reference depth, E(c0) = E0 (Pa), > 0.
+    c0 : float
+        Reference depth c0 of E(z) = E0 (z/c0)^k (m), > 0.
+    k : float
+        Exponent of the power-law grading, -1 < k < 1 (k = 0 is homogeneous, with E* = 4 E0 / 3).
+
+    Returns
+    -------
+    float
+        A_k, in m^(1+k) of displacement per N of point force.
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return (3.0 + k) * c0**k / (2.0 * math.pi * (1.0 + k) * (2.0 + k) * E0)
 
 
 def graded_stiffness(*, E0: float, c0: float, k: float, radius: float) -> float:
-    """Eq. 34: K(a) = 4 (2+k) cos(k pi/2) / (3+k) * E0 a^(1+k) / c0^k."""
+    """Stiffness of a circular flat punch on a graded half-space (Eq. 34).
+
+    K(a) = 4 (2+k) cos(k pi/2) / (3+k) * E0 a^(1+k) / c0^k; k = 0 gives Eq. 1.
+
+    Parameters
+    ----------
+    E0 : float
+        Modulus of the graded half-space at the reference depth, E(c0) = E0 (Pa), > 0.
+    c0 : float
+        Reference depth c0 of E(z) = E0 (z/c0)^k (m), > 0.
+    k : float
+        Exponent of the power-law grading, -1 < k < 1 (k = 0 is homogeneous, with E* = 4 E0 / 3).
+    radius : float
+        Punch radius a (m), > 0.
+
+    Returns
+    -------
+    float
+        K (N/m).
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return 4.0 * (2.0 + k) * math.cos(k * math.pi / 2) / (3.0 + k) * E0 * radius ** (1.0 + k) / c0**k
 
 
 def graded_energy(*, E0: float, c0: float, k: float, radius: float, approach: float, work: float) -> float:
-    """Eq. 35: U = 2 (2+k) cos(k pi/2)/(3+k) * E0 a^(1+k) d^2 / c0^k - pi a^2 w."""
+    """Total energy of a circular flat punch on a graded half-space (Eq. 35).
+
+    U = 2 (2+k) cos(k pi/2)/(3+k) * E0 a^(1+k) d^2 / c0^k - pi a^2 w.
+
+    Parameters
+    ----------
+    E0 : float
+        Modulus of the graded half-space at the reference depth, E(c0) = E0 (Pa), > 0.
+    c0 : float
+        Reference depth c0 of E(z) = E0 (z/c0)^k (m), > 0.
+    k : float
+        Exponent of the power-law grading, -1 < k < 1 (k = 0 is homogeneous, with E* = 4 E0 / 3).
+    radius : float
+        Punch radius a (m), > 0.
+    approach : float
+        Approach d of the punch (m); d < 0 when it is pulled.
+    work : float
+        Work of adhesion w per unit area (J/m^2), >= 0.
+
+    Returns
+    -------
+    float
+        U (J).
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return (
         2.0 * (2.0 + k) * math.cos(k * math.pi / 2) / (3.0 + k) * E0 * radius ** (1.0 + k) * approach**2 / c0**k
         - math.pi * radius**2 * work
@@ -224,7 +795,34 @@ def graded_energy(*, E0: float, c0: float, k: float, radius: float, approach: fl
 
 
 def graded_critical_approach(*, E0: float, c0: float, k: float, radius: float, work: float) -> float:
-    """Eq. 38 (from Eqs. 36-37): d_c = -[pi w (3+k) c0^k a^(1-k) / ((2+k)(1+k) cos(k pi/2) E0)]^(1/2)."""
+    """Critical approach of a circular flat punch on a graded half-space (Eq. 38).
+
+    d_c = -[pi w (3+k) c0^k a^(1-k) / ((2+k)(1+k) cos(k pi/2) E0)]^(1/2), from the critical state
+    of Eqs. 36-37.
+
+    Parameters
+    ----------
+    E0 : float
+        Modulus of the graded half-space at the reference depth, E(c0) = E0 (Pa), > 0.
+    c0 : float
+        Reference depth c0 of E(z) = E0 (z/c0)^k (m), > 0.
+    k : float
+        Exponent of the power-law grading, -1 < k < 1 (k = 0 is homogeneous, with E* = 4 E0 / 3).
+    radius : float
+        Punch radius a (m), > 0.
+    work : float
+        Work of adhesion w per unit area (J/m^2), >= 0.
+
+    Returns
+    -------
+    float
+        d_c (m), <= 0.
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return -math.sqrt(
         math.pi
         * work
@@ -236,31 +834,119 @@ def graded_critical_approach(*, E0: float, c0: float, k: float, radius: float, w
 
 
 def graded_psi(k: float) -> float:
-    """Eq. 40: psi(k) = 2 (2+k) cos(k pi/2) / ((3+k)(1+k))."""
+    """Factor psi(k) = 2 (2+k) cos(k pi/2) / ((3+k)(1+k)) of the graded adhesion force (Eq. 40).
+
+    Parameters
+    ----------
+    k : float
+        Exponent of the power-law grading, -1 < k < 1 (k = 0 is homogeneous, with E* = 4 E0 / 3).
+
+    Returns
+    -------
+    float
+        psi(k), dimensionless; psi(0) = 4/3.
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return 2.0 * (2.0 + k) * math.cos(k * math.pi / 2) / ((3.0 + k) * (1.0 + k))
 
 
 def graded_adhesion_force(
     *, E0: float, c0: float, k: float, radius: float, work: float, filling_factor: float = 1.0
 ) -> float:
-    """Eq. 39 (Eq. 41 with filling factor): F_A = sqrt(8 pi psi(k) E0 phi w a^(3+k) / c0^k)."""
+    """Adhesion force of a circular flat punch on a graded half-space (Eqs. 39, 41).
+
+    F_A = sqrt(8 pi psi(k) E0 phi w a^(3+k) / c0^k), with psi of Eq. 40; a filling factor phi
+    replaces w by phi w (Eq. 41).
+
+    Parameters
+    ----------
+    E0 : float
+        Modulus of the graded half-space at the reference depth, E(c0) = E0 (Pa), > 0.
+    c0 : float
+        Reference depth c0 of E(z) = E0 (z/c0)^k (m), > 0.
+    k : float
+        Exponent of the power-law grading, -1 < k < 1 (k = 0 is homogeneous, with E* = 4 E0 / 3).
+    radius : float
+        Punch radius a (m), > 0.
+    work : float
+        Work of adhesion w per unit area (J/m^2), >= 0.
+    filling_factor : float, optional
+        Fraction phi of the nominal area that adheres, 0 < phi <= 1 (Eq. 24); 1 by default.
+
+    Returns
+    -------
+    float
+        F_A (N), >= 0.
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return math.sqrt(8.0 * math.pi * graded_psi(k) * E0 * filling_factor * work * radius ** (3.0 + k) / c0**k)
 
 
 def force_at_nominal_area(force, *, area, nominal_area, k: float = 0.0):
-    """A pull-off force scaled from a face of ``area`` (e.g. its rasterised staircase) to the
-    same shape at ``nominal_area``: F ~ a^((3+k)/2) ~ A^((3+k)/4) (Eqs. 6 and 39).  Takes
-    arrays."""
+    """Pull-off force scaled from one face area to the same shape at another, F ~ A^((3+k)/4).
+
+    For a face of ``area`` (e.g. its rasterised staircase) scaled to ``nominal_area``:
+    F ~ a^((3+k)/2) (Eqs. 6 and 39), and a ~ sqrt(A).
+
+    Parameters
+    ----------
+    force : float or array_like
+        Pull-off force F at ``area`` (N).
+    area : float or array_like
+        Area of the face the force belongs to (m^2), > 0.
+    nominal_area : float or array_like
+        Area to scale to (m^2), > 0.
+    k : float, optional
+        Exponent of the grading, -1 < k < 1; 0 (homogeneous) by default.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The force at ``nominal_area``, broadcast over the arguments.
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return force * (nominal_area / area) ** ((3.0 + k) / 4.0)
 
 
 @lru_cache(maxsize=256)
 def graded_two_square_integral(k: float) -> float:
-    """J_k = integral over two unit squares of |x - x'|^-(1+k)  (sheet, section 5).
+    """J_k, the integral over two unit squares of abs(x - x')^-(1+k) (formula sheet, section 5).
 
     Reduced exactly to the difference vector (u, v) in [0, 1]^2 with weight (1-u)(1-v), then
     to polar coordinates over the triangle 0 <= v <= u <= 1, where the radial integral is
     closed-form; one smooth integral over the angle remains.  J_0 = 2.973210...
+
+    Parameters
+    ----------
+    k : float
+        Exponent of the power-law grading, -1 < k < 1 (k = 0 is homogeneous, with E* = 4 E0 / 3).
+
+    Returns
+    -------
+    float
+        J_k, dimensionless, to a relative 1e-13.
+
+    Raises
+    ------
+    ValueError
+        If k is outside (-1, 1).
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
     """
     if not -1.0 < k < 1.0:
         raise ValueError(f"k must be in (-1, 1) (got {k})")
@@ -275,13 +961,66 @@ def graded_two_square_integral(k: float) -> float:
 
 
 def graded_criterion_constant(k: float) -> float:
-    """kappa(k) of Eq. 42: 1/sqrt(C_k), C_k = (3+k) J_k / (4 pi (1+k)(2+k))."""
+    """kappa(k) = 1/sqrt(C_k) of the graded detachment criterion (Eq. 42).
+
+    C_k = (3+k) J_k / (4 pi (1+k)(2+k)), from the isolated-element energy argument of Eq. 20;
+    k = 0 reproduces Eq. 22.  An estimate: the paper calibrates its kappa numerically.
+
+    Parameters
+    ----------
+    k : float
+        Exponent of the power-law grading, -1 < k < 1 (k = 0 is homogeneous, with E* = 4 E0 / 3).
+
+    Returns
+    -------
+    float
+        kappa(k), dimensionless.
+
+    Raises
+    ------
+    ValueError
+        If k is outside (-1, 1).
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     C = (3.0 + k) * graded_two_square_integral(k) / (4.0 * math.pi * (1.0 + k) * (2.0 + k))
     return 1.0 / math.sqrt(C)
 
 
 def graded_critical_stress(*, E0: float, c0: float, k: float, work: float, spacing: float) -> float:
-    """Eq. 42: sigma_c = kappa(k) sqrt(E0 w / (c0^k Delta^(1-k)))."""
+    """Critical tensile stress on a graded half-space, kappa(k) sqrt(E0 w / (c0^k Delta^(1-k))) (Eq. 42).
+
+    Parameters
+    ----------
+    E0 : float
+        Modulus of the graded half-space at the reference depth, E(c0) = E0 (Pa), > 0.
+    c0 : float
+        Reference depth c0 of E(z) = E0 (z/c0)^k (m), > 0.
+    k : float
+        Exponent of the power-law grading, -1 < k < 1 (k = 0 is homogeneous, with E* = 4 E0 / 3).
+    work : float
+        Work of adhesion w per unit area (J/m^2), >= 0.
+    spacing : float
+        Element side Delta of the boundary-element grid (m), > 0.
+
+    Returns
+    -------
+    float
+        sigma_c (Pa), >= 0.
+
+    Raises
+    ------
+    ValueError
+        If k is outside (-1, 1).
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return graded_criterion_constant(k) * math.sqrt(E0 * work / (c0**k * spacing ** (1.0 - k)))
 
 
@@ -291,24 +1030,113 @@ def graded_critical_stress(*, E0: float, c0: float, k: float, work: float, spaci
 
 
 def elliptical_punch_stiffness(*, E_star: float, semi_major: float, semi_minor: float) -> float:
-    """Galin: F = pi E* a d / K(e), e^2 = 1 - b^2/a^2, K the complete elliptic integral of
-    the first kind (scipy's ellipk takes the parameter m = e^2).  e = 0 gives Eq. 1."""
+    """Stiffness of an elliptical flat punch, K = pi E* a / K(e) (Galin).
+
+    F = pi E* a d / K(e) with e^2 = 1 - b^2/a^2 and K the complete elliptic integral of the
+    first kind (scipy's ellipk takes the parameter m = e^2).  e = 0 gives Eq. 1.
+
+    Parameters
+    ----------
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2) of the homogeneous half-space (Pa), > 0.
+    semi_major : float
+        Semi-major axis a (m), > 0.
+    semi_minor : float
+        Semi-minor axis b (m), 0 < b <= a.
+
+    Returns
+    -------
+    float
+        K (N/m).
+
+    References
+    ----------
+    - L.A. Galin, "Contact Problems in the Theory of Elasticity" (1953; English translation 1961).
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     m = 1.0 - (semi_minor / semi_major) ** 2
     return math.pi * E_star * semi_major / special.ellipk(m)
 
 
 def jkr_pulloff_force(*, work: float, sphere_radius: float) -> float:
-    """JKR: magnitude of the largest tensile force on a sphere, 1.5 pi w R."""
+    """JKR pull-off force of a sphere, 1.5 pi w R: the magnitude of the largest tensile force.
+
+    Under force control; a check of the boundary-element method named by the paper.
+
+    Parameters
+    ----------
+    work : float
+        Work of adhesion w per unit area (J/m^2), >= 0.
+    sphere_radius : float
+        Radius R of the sphere (m), > 0.
+
+    Returns
+    -------
+    float
+        1.5 pi w R (N), >= 0.
+
+    References
+    ----------
+    - K.L. Johnson, K. Kendall, A.D. Roberts, "Surface energy and the contact of elastic solids",
+      Proc. R. Soc. Lond. A 324:301-313 (1971).
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     return 1.5 * math.pi * work * sphere_radius
 
 
 def jkr_force(*, E_star: float, work: float, sphere_radius: float, contact_radius):
-    """JKR force at contact radius a: F = 4 E* a^3 / (3 R) - sqrt(8 pi w E* a^3)."""
+    """JKR force at contact radius a, F = 4 E* a^3 / (3 R) - sqrt(8 pi w E* a^3).
+
+    Parameters
+    ----------
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2) of the homogeneous half-space (Pa), > 0.
+    work : float
+        Work of adhesion w per unit area (J/m^2), >= 0.
+    sphere_radius : float
+        Radius R of the sphere (m), > 0.
+    contact_radius : float or array_like
+        Contact radius a (m), >= 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        F (N), the shape of ``contact_radius`` (0-d for a float); negative is tensile.
+
+    References
+    ----------
+    - K.L. Johnson, K. Kendall, A.D. Roberts, "Surface energy and the contact of elastic solids",
+      Proc. R. Soc. Lond. A 324:301-313 (1971).
+    """
     a = np.asarray(contact_radius, float)
     return 4.0 * E_star * a**3 / (3.0 * sphere_radius) - np.sqrt(8.0 * math.pi * work * E_star * a**3)
 
 
 def jkr_approach(*, E_star: float, work: float, sphere_radius: float, contact_radius):
-    """JKR approach at contact radius a: d = a^2 / R - sqrt(2 pi w a / E*)."""
+    """JKR approach at contact radius a, d = a^2 / R - sqrt(2 pi w a / E*).
+
+    Parameters
+    ----------
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2) of the homogeneous half-space (Pa), > 0.
+    work : float
+        Work of adhesion w per unit area (J/m^2), >= 0.
+    sphere_radius : float
+        Radius R of the sphere (m), > 0.
+    contact_radius : float or array_like
+        Contact radius a (m), >= 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        d (m), the shape of ``contact_radius`` (0-d for a float).
+
+    References
+    ----------
+    - K.L. Johnson, K. Kendall, A.D. Roberts, "Surface energy and the contact of elastic solids",
+      Proc. R. Soc. Lond. A 324:301-313 (1971).
+    """
     a = np.asarray(contact_radius, float)
     return a**2 / sphere_radius - np.sqrt(2.0 * math.pi * work * a / E_star)
