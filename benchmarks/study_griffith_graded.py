@@ -4,24 +4,24 @@ calibration of the graded criterion that ``bem_griffith.criterion`` stores.
     python benchmarks/study_griffith_graded.py [--quick | --full] [--update] [--k K [K ...]]
 
 For the tabulated k in -0.95 .. 0.95 (or the ``--k`` given) and N = 32 ... 128 elements per
-radius (``--full``: up to 181, the sweep the stored calibration was fitted on; minutes per k), pulls the flat circle with Eq. 42's constant (``graded_criterion="eq42"``) and prints
+radius (``--full``: up to 181, the sweep the stored calibration was fitted on; minutes per k),
+pulls the flat circle with Eq. 42's constant (``graded_criterion="eq42"``) and prints
 F_A / F_A(Eq. 39) with the force scaled to the nominal area (F ~ A^((3+k)/4), so that the
 staircase area's own error is not calibrated away).  That ratio drifts with N in the same way
 for -0.95 <= k <= 0.75, k = 0 included (the staircase's most stressed cells; at k = 0.9, 0.95
 the pressure is nearly uniform and it hardly drifts), so the calibration uses its ratio to the
 k = 0 value on the same grid, rho(k, N): fitted as rho_inf + c / N, rho_inf is the stored
 r(k), and its uncertainty u is the larger of the change to a rho_inf + c / sqrt(N) fit and the
-largest residual.  Then one
-calibrated solve per k checks that the calibration only rescales (same contact sets, forces
-divided by r) and prints the calibrated circle's distance from Eq. 39 at N = 40: a residual
-of the calibration, not a validation.
+largest residual.  Then one calibrated solve per k checks that the calibration only rescales
+(same contact sets, forces divided by r) and prints the calibrated circle's distance from
+Eq. 39 at N = 40: a residual of the calibration, not a validation.
 k = 0 runs through the graded kernel (identical to the homogeneous solver, nu = 1/2).
 Every solve must report convergence; the CG iterations per contact solve are printed because
 the kernel r^-(1+k) is nearly flat and long-ranged as k -> -1 and the Fourier preconditioner
-must keep them bounded there.  ``--update`` writes three tables into docs/ (accuracy_griffith_graded_sweep,
+must keep them bounded there.  The k < -0.75 runs cost most (a condition number growing like
+N^(1 - k)).  ``--update`` writes three tables into docs/ (accuracy_griffith_graded_sweep,
 accuracy_griffith_graded, accuracy_griffith_graded_check), rendered into docs/accuracy.md by
-``python benchmarks/docs_tables.py``.  The k < -0.75 runs cost most (a condition number
-growing like N^(1 - k)).
+``python benchmarks/docs_tables.py``.
 """
 
 from __future__ import annotations
