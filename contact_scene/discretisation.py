@@ -5,8 +5,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .errors import SceneError, check_real
+from .errors import SceneError
 from .shapes import Shape
+from .validation import check_fields, flag, real
 
 __all__ = ["Grid"]
 
@@ -27,30 +28,20 @@ class Grid:
     Implemented by the Griffith BEM for homogeneous bodies; other methods refuse it.
     """
 
-    elements_per_radius: float | None = 32.0
-    spacing: float | None = None
-    periodic: bool = False
-    period: float | None = None
+    elements_per_radius: float | None = real(32.0, gt=0, le=1e5, optional=True)
+    spacing: float | None = real(None, gt=0, optional=True)
+    periodic: bool = flag(False)
+    period: float | None = real(None, gt=0, optional=True, when=lambda grid: grid.periodic)
 
     def __post_init__(self):
-        if not isinstance(self.periodic, bool):
-            raise SceneError("grid.periodic", f"must be true or false (got {self.periodic!r})")
-        if self.periodic:
-            if self.period is None:
-                raise SceneError("grid.period", "a periodic grid needs the period (side of the square cell, > 0)")
-            object.__setattr__(self, "period", check_real("grid.period", self.period, lo=0, lo_open=True))
-        elif self.period is not None:
+        check_fields(self, "grid")
+        # which fields must be given depends on the others: not a range of any one of them
+        if self.periodic and self.period is None:
+            raise SceneError("grid.period", "a periodic grid needs the period (side of the square cell, > 0)")
+        if not self.periodic and self.period is not None:
             raise SceneError("grid.period", "a period is meaningful only with periodic = true")
-        if self.spacing is not None:
-            object.__setattr__(self, "spacing", check_real("grid.spacing", self.spacing, lo=0, lo_open=True))
-        elif self.elements_per_radius is None:
+        if self.spacing is None and self.elements_per_radius is None:
             raise SceneError("grid.elements_per_radius", "give elements_per_radius or spacing")
-        if self.elements_per_radius is not None:
-            object.__setattr__(
-                self,
-                "elements_per_radius",
-                check_real("grid.elements_per_radius", self.elements_per_radius, lo=0, lo_open=True, hi=1e5),
-            )
 
     def spacing_for(self, shape: Shape) -> float:
         if self.spacing is not None:

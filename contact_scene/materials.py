@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .errors import check_real
+from .validation import check_fields, real
 
 __all__ = ["Material", "Homogeneous", "PowerLawGraded"]
 
@@ -15,18 +15,13 @@ class Material:
 
 @dataclass(frozen=True)
 class Homogeneous(Material):
-    youngs_modulus: float
-    poisson_ratio: float = 0.5
+    youngs_modulus: float = real(gt=0)
+    # nu = -1 would make E* infinite; nu > 1/2 is not positive definite
+    poisson_ratio: float = real(0.5, gt=-1, le=0.5)
     kind = "homogeneous"
 
     def __post_init__(self):
-        object.__setattr__(
-            self, "youngs_modulus", check_real("material.youngs_modulus", self.youngs_modulus, lo=0, lo_open=True)
-        )
-        # nu = -1 would make E* infinite; nu > 1/2 is not positive definite
-        object.__setattr__(
-            self, "poisson_ratio", check_real("material.poisson_ratio", self.poisson_ratio, lo=-1, hi=0.5, lo_open=True)
-        )
+        check_fields(self, "material")
 
     @property
     def effective_modulus(self) -> float:
@@ -42,21 +37,14 @@ class PowerLawGraded(Material):
     derived, not chosen.  k = 0 is the homogeneous incompressible half-space (E* = 4 E0/3).
     """
 
-    surface_modulus: float
-    reference_depth: float
-    exponent: float
+    surface_modulus: float = real(gt=0)
+    reference_depth: float = real(gt=0)
+    # -1 < k < 1 (Eq. 32): where the surface Green's function A_k / r^(1+k) exists
+    exponent: float = real(gt=-1, lt=1)
     kind = "power_law_graded"
 
     def __post_init__(self):
-        object.__setattr__(
-            self, "surface_modulus", check_real("material.surface_modulus", self.surface_modulus, lo=0, lo_open=True)
-        )
-        object.__setattr__(
-            self, "reference_depth", check_real("material.reference_depth", self.reference_depth, lo=0, lo_open=True)
-        )
-        object.__setattr__(
-            self, "exponent", check_real("material.exponent", self.exponent, lo=-1, hi=1, lo_open=True, hi_open=True)
-        )
+        check_fields(self, "material")
 
     @property
     def poisson_ratio(self) -> float:

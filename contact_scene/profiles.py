@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import check_real
+from .validation import check_fields, point, real
 
 __all__ = ["Profile", "Flat", "Paraboloid", "Sphere", "Cone"]
 
@@ -38,12 +38,12 @@ class Flat(Profile):
 class Paraboloid(Profile):
     """h = r^2 / (2 R): the JKR sphere in the small-slope limit."""
 
-    radius: float
-    apex: tuple[float, float] = (0.0, 0.0)
+    radius: float = real(gt=0, name="indenter.profile_radius")
+    apex: tuple[float, float] = point(name="indenter.profile_apex")
     kind = "paraboloid"
 
     def __post_init__(self):
-        object.__setattr__(self, "radius", check_real("indenter.profile_radius", self.radius, lo=0, lo_open=True))
+        check_fields(self, "indenter")
 
     def height(self, x, y):
         r2 = (np.asarray(x) - self.apex[0]) ** 2 + (np.asarray(y) - self.apex[1]) ** 2
@@ -54,12 +54,12 @@ class Paraboloid(Profile):
 class Sphere(Profile):
     """h = R - sqrt(R^2 - r^2); the face must lie within r < R."""
 
-    radius: float
-    apex: tuple[float, float] = (0.0, 0.0)
+    radius: float = real(gt=0, name="indenter.profile_radius")
+    apex: tuple[float, float] = point(name="indenter.profile_apex")
     kind = "sphere"
 
     def __post_init__(self):
-        object.__setattr__(self, "radius", check_real("indenter.profile_radius", self.radius, lo=0, lo_open=True))
+        check_fields(self, "indenter")
 
     def height(self, x, y):
         r2 = (np.asarray(x) - self.apex[0]) ** 2 + (np.asarray(y) - self.apex[1]) ** 2
@@ -71,16 +71,12 @@ class Sphere(Profile):
 class Cone(Profile):
     """h = r / tan(alpha), alpha the half-angle at the tip (90 deg would be flat)."""
 
-    half_angle_deg: float
-    apex: tuple[float, float] = (0.0, 0.0)
+    half_angle_deg: float = real(gt=0, lt=90)
+    apex: tuple[float, float] = point(name="indenter.profile_apex")
     kind = "cone"
 
     def __post_init__(self):
-        object.__setattr__(
-            self,
-            "half_angle_deg",
-            check_real("indenter.half_angle_deg", self.half_angle_deg, lo=0, hi=90, lo_open=True, hi_open=True),
-        )
+        check_fields(self, "indenter")
 
     def height(self, x, y):
         r = np.hypot(np.asarray(x) - self.apex[0], np.asarray(y) - self.apex[1])

@@ -10,10 +10,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from .errors import SceneError, check_choice, check_real
+from .errors import SceneError
 from .materials import Homogeneous, Material, PowerLawGraded
 from .profiles import Flat, Profile, Sphere
 from .shapes import Circle, Shape
+from .validation import check_fields, choice, flag, real, reals
 
 __all__ = ["Indenter", "Adhesion", "Loading", "Outputs", "Scene"]
 
@@ -26,6 +27,8 @@ class Indenter:
     profile: Profile = field(default_factory=Flat)
 
     def __post_init__(self):
+        # the parts' types and a rule spanning both (the face must fit under the sphere) are
+        # not ranges of one field, so they are checked here rather than declared
         if not isinstance(self.shape, Shape):
             raise SceneError("indenter.shape", f"must be a face shape (got {type(self.shape).__name__})")
         if not isinstance(self.profile, Profile):
@@ -52,17 +55,12 @@ class Adhesion:
     ``None`` means the zero-range (JKR / Griffith) limit.
     """
 
-    work_of_adhesion: float
-    range: float | None = None
-    potential: str = "exponential"
+    work_of_adhesion: float = real(ge=0)
+    range: float | None = real(None, gt=0, optional=True)
+    potential: str = choice("exponential", ("exponential", "maugis_dugdale"))
 
     def __post_init__(self):
-        object.__setattr__(
-            self, "work_of_adhesion", check_real("adhesion.work_of_adhesion", self.work_of_adhesion, lo=0)
-        )
-        if self.range is not None:
-            object.__setattr__(self, "range", check_real("adhesion.range", self.range, lo=0, lo_open=True))
-        check_choice("adhesion.potential", self.potential, {"exponential", "maugis_dugdale"})
+        check_fields(self, "adhesion")
 
 
 @dataclass(frozen=True)
@@ -73,24 +71,16 @@ class Loading:
     final pull-off.  ``pull_limit`` ends the pull at that approach if the punch is still
     attached (a case of strong adhesion reported as such)."""
 
-    press_approach: float | None = None
-    press_force: float | None = None
-    turning_points: tuple[float, ...] = ()
-    pull_limit: float | None = None
+    press_approach: float | None = real(None, optional=True)
+    press_force: float | None = real(None, ge=0, optional=True)
+    turning_points: tuple[float, ...] = reals()
+    pull_limit: float | None = real(None, lt=0, optional=True)
 
     def __post_init__(self):
+        # two ways of stating the same press exclude each other: not a range of either field
         if self.press_approach is not None and self.press_force is not None:
             raise SceneError("loading.press_force", "give press_approach or press_force, not both")
-        if self.press_approach is not None:
-            object.__setattr__(self, "press_approach", check_real("loading.press_approach", self.press_approach))
-        if self.press_force is not None:
-            object.__setattr__(self, "press_force", check_real("loading.press_force", self.press_force, lo=0))
-        turning_points = tuple(check_real("loading.turning_points", t) for t in self.turning_points)
-        object.__setattr__(self, "turning_points", turning_points)
-        if self.pull_limit is not None:
-            object.__setattr__(
-                self, "pull_limit", check_real("loading.pull_limit", self.pull_limit, hi=0, hi_open=True)
-            )
+        check_fields(self, "loading")
 
 
 @dataclass(frozen=True)
@@ -101,12 +91,12 @@ class Outputs:
     ``fields``: pressure and displacement on the grid (or mesh) at those snapshots and at
     pull-off."""
 
-    curve: bool = True
-    snapshots: tuple[float, ...] = ()
-    fields: bool = False
+    curve: bool = flag(True)
+    snapshots: tuple[float, ...] = reals()
+    fields: bool = flag(False)
 
     def __post_init__(self):
-        object.__setattr__(self, "snapshots", tuple(check_real("outputs.snapshots", s) for s in self.snapshots))
+        check_fields(self, "outputs")
 
 
 @dataclass(frozen=True)

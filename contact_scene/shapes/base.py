@@ -15,8 +15,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..validation import check_fields
 from . import numerical
-from .fields import check_fields
 
 __all__ = ["Incircle", "Shape", "BOUNDARY_REL_TOL"]
 
@@ -40,7 +40,7 @@ class Shape:
         return True
 
     def __post_init__(self):
-        check_fields(self)
+        check_fields(self, "indenter")
         self._complete()
 
     def _complete(self) -> None:

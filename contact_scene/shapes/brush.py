@@ -8,9 +8,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import SceneError
+from ..validation import choice, real, whole
 from .composite import Union
 from .conics import Circle
-from .fields import choice, real, whole
 from .polygons import Square
 
 __all__ = ["Brush"]

@@ -13,10 +13,10 @@ from functools import cached_property
 import numpy as np
 
 from ..errors import SceneError
+from ..validation import real
 from . import numerical
 from .base import Incircle, Shape
 from .conics import Circle, Ellipse
-from .fields import real
 from .polygons import PolygonalShape
 
 __all__ = ["Union", "Difference", "TwoCircles"]

@@ -7,8 +7,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..validation import point, real
 from .base import BOUNDARY_REL_TOL, Incircle, Shape
-from .fields import point, real
 
 __all__ = ["Circle", "Ellipse"]
 

@@ -5,9 +5,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from ..errors import SceneError
+from ..validation import real, whole
 from .base import Shape
 from .composite import Difference
-from .fields import real, whole
 from .polygons import Polygon, Square
 
 __all__ = ["SquareWithFaults"]

@@ -9,8 +9,8 @@ import numpy as np
 from scipy import ndimage
 
 from ..errors import SceneError
+from ..validation import real
 from .base import Incircle, Shape
-from .fields import real
 
 __all__ = ["ImageMask"]
 

@@ -11,9 +11,9 @@ import numpy as np
 from scipy import optimize
 
 from ..errors import SceneError, check_real
+from ..validation import point, real, whole
 from . import numerical
 from .base import Incircle, Shape
-from .fields import point, real, whole
 
 __all__ = [
     "PolygonalShape",

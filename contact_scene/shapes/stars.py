@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .fields import point, real, whole
+from ..validation import point, real, whole
 from .polygons import PolygonalShape, rotate_points
 
 __all__ = ["Star", "PowerLawStar"]

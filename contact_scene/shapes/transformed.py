@@ -8,8 +8,8 @@ from functools import cached_property
 
 import numpy as np
 
+from ..validation import real
 from .base import Incircle, Shape
-from .fields import real
 
 __all__ = ["Transformed"]
 
