@@ -5,15 +5,15 @@ The displacement at the centre of element i from uniform pressure on element j !
 as that of the point load Delta^2 p_j at the centre of j (Boussinesq, or its graded analogue
 w = A_k P / r^(1+k), theory sheet section 5):
 
-    C_ij = A_k Delta^2 / |x_i - x_j|^(1+k)        (A_0 = 1 / (pi E*)).
+    C_ij = A_k Delta^2 / abs(x_i - x_j)^(1+k)        (A_0 = 1 / (pi E*)).
 
 The self term is where the point load is singular.  It is chosen so that the lattice sum
 reproduces the continuum integral: for s = 1 + k in (0, 2),
 
-    sum over lattice points R != 0 within L of Delta^2 |R|^-s
-        = integral over |x| < L of |x|^-s dx + Z(s) Delta^(2-s) + o(1)    (L -> infinity),
+    sum over lattice points R != 0 within L of Delta^2 abs(R)^-s
+        = integral over abs(x) < L of abs(x)^-s dx + Z(s) Delta^(2-s) + o(1)    (L -> infinity),
 
-where Z(s) = sum' |m|^-s over the unit square lattice, continued analytically to s < 2
+where Z(s) = sum' abs(m)^-s over the unit square lattice, continued analytically to s < 2
 (Epstein's zeta function; 4 zeta(s/2) beta(s/2), Dirichlet's beta; Z(1) = -3.90026...).  So
 
     C_ii = -Z(1 + k) A_k Delta^(1-k)    (k = 0: 3.90026 Delta / (pi E*))
@@ -60,8 +60,26 @@ def _dirichlet_beta(s: float) -> float:
 
 
 def square_lattice_zeta(s: float) -> float:
-    """Z(s) = sum over the unit square lattice without the origin of |m|^-s, continued to
-    0 < s < 2: 4 zeta(s/2) beta(s/2) (the lattice's theta function factorises)."""
+    """Epstein zeta Z(s) of the unit square lattice, continued to 0 < s < 2.
+
+    Z(s) = sum over the lattice points m != 0 of abs(m)^-s, equal to 4 zeta(s/2) beta(s/2)
+    (the lattice's theta function factorises; beta is Dirichlet's); Z(1) = -3.90026...
+
+    Parameters
+    ----------
+    s : float
+        Exponent, 0 < s < 2 (s = 1 + k for the graded kernel).
+
+    Returns
+    -------
+    float
+        Z(s).
+
+    Raises
+    ------
+    ValueError
+        If s is outside (0, 2).
+    """
     from scipy.special import zeta
 
     if not 0.0 < s < 2.0:
@@ -85,16 +103,75 @@ def _point_layout(nx: int, ny: int, spacing: float, k: float, padded: tuple[int,
 def collocated_influence(
     nx: int, ny: int, spacing: float, E_star: float, padded: tuple[int, int] | None = None
 ) -> np.ndarray:
-    """Point-collocated Boussinesq coefficients of a homogeneous half-space (u = C p), laid
-    out like :func:`halfspace.kernel.love_influence`."""
+    """Point-collocated Boussinesq coefficients of a homogeneous half-space (u = C p).
+
+    C_ij = Delta^2 / (pi E* abs(x_i - x_j)) off the diagonal and the zeta-corrected self term
+    -Z(1) Delta / (pi E*) (see the module), laid out like :func:`halfspace.love_influence`.
+
+    Parameters
+    ----------
+    nx, ny : int
+        Cells of the grid along x and y, >= 1.
+    spacing : float
+        Side Delta of the square elements, > 0.
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2), > 0.
+    padded : tuple of int, optional
+        (Mx, My), the zero-padded size of the FFT convolution, each >= 2n - 1 (:func:`padded_shape`
+        gives an FFT-friendly one); (2 nx, 2 ny) by default.
+
+    Returns
+    -------
+    numpy.ndarray
+        (Mx, My) array for a linear (zero-padded) FFT convolution: entry [i, j] holds the
+        coefficient of cell offset (i, j) for i < nx and (i - Mx, j) for i > Mx - nx (likewise j);
+        the entries of offsets no pair of cells can have are zero.
+
+    Raises
+    ------
+    ValueError
+        If ``padded`` is smaller than 2n - 1 in either direction.
+    """
     return _point_layout(nx, ny, spacing, 0.0, padded) / (math.pi * E_star)
 
 
 def collocated_graded_influence(
     nx: int, ny: int, spacing: float, E0: float, c0: float, k: float, padded: tuple[int, int] | None = None
 ) -> np.ndarray:
-    """Point-collocated coefficients of a power-law graded half-space (w = A_k P / r^(1+k)),
-    laid out like :func:`halfspace.kernel.graded_influence`."""
+    """Point-collocated coefficients of a power-law graded half-space.
+
+    C_ij = A_k Delta^2 / abs(x_i - x_j)^(1+k) off the diagonal (w = A_k P / r^(1+k)) and the
+    self term -Z(1+k) A_k Delta^(1-k) (see the module), laid out like
+    :func:`halfspace.graded_influence`.
+
+    Parameters
+    ----------
+    nx, ny : int
+        Cells of the grid along x and y, >= 1.
+    spacing : float
+        Side Delta of the square elements, > 0.
+    E0 : float
+        Modulus at the reference depth of E(z) = E0 (z/c0)^k, > 0.
+    c0 : float
+        Reference depth c0, > 0.
+    k : float
+        Exponent of the grading, -1 < k < 1.
+    padded : tuple of int, optional
+        (Mx, My), the zero-padded size of the FFT convolution, each >= 2n - 1 (:func:`padded_shape`
+        gives an FFT-friendly one); (2 nx, 2 ny) by default.
+
+    Returns
+    -------
+    numpy.ndarray
+        (Mx, My) array for a linear (zero-padded) FFT convolution: entry [i, j] holds the
+        coefficient of cell offset (i, j) for i < nx and (i - Mx, j) for i > Mx - nx (likewise j);
+        the entries of offsets no pair of cells can have are zero.
+
+    Raises
+    ------
+    ValueError
+        If k is outside (-1, 1) or ``padded`` is smaller than 2n - 1.
+    """
     from contact_scene.theory import graded_green_coefficient
 
     if not -1.0 < k < 1.0:

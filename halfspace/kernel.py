@@ -31,10 +31,28 @@ def _f(X, Y):
 
 
 def love_square_integral(x, y, half_width: float):
-    """The integral of 1/|r - r'| over the square |x'|, |y'| <= b, seen from (x, y) (Love 1929).
+    """Integral of 1/abs(r - r') over the square abs(x'), abs(y') <= b, seen from (x, y).
 
-    Closed asinh form; the displacement under unit pressure on the square is this divided by
-    pi E*.  At the centre it is 8 b asinh(1)."""
+    Love's closed asinh form; the displacement at (x, y) under unit pressure on the square is this
+    divided by pi E* (formula sheet, section 3).  At the centre it is 8 b asinh(1).
+
+    Parameters
+    ----------
+    x, y : float or array_like
+        Field point relative to the square's centre (broadcast together).
+    half_width : float
+        Half the side of the square, b > 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        The integral at each field point (length units).
+
+    References
+    ----------
+    - A.E.H. Love, "The stress produced in a semi-infinite solid by pressure on part of the boundary",
+      Phil. Trans. R. Soc. Lond. A 228:377-420 (1929).
+    """
     b = half_width
     return _f(x + b, y + b) - _f(x + b, y - b) - _f(x - b, y + b) + _f(x - b, y - b)
 
@@ -61,28 +79,82 @@ def _offset_layout(integral, nx: int, ny: int, spacing: float, padded: tuple[int
 def love_influence(
     nx: int, ny: int, spacing: float, E_star: float, padded: tuple[int, int] | None = None
 ) -> np.ndarray:
-    """Influence coefficients of a homogeneous half-space (u = C p), in the layout of
-    :func:`_offset_layout`."""
+    """Influence coefficients of square elements on a homogeneous half-space (u = C p).
+
+    The displacement at the centre of one element from unit pressure on another, Love's
+    integral (:func:`love_square_integral`) over pi E*, laid out for
+    :class:`~halfspace.HalfSpaceOperator`.
+
+    Parameters
+    ----------
+    nx, ny : int
+        Cells of the grid along x and y, >= 1.
+    spacing : float
+        Side Delta of the square elements, > 0.
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2), > 0.
+    padded : tuple of int, optional
+        (Mx, My), the zero-padded size of the FFT convolution, each >= 2n - 1 (:func:`padded_shape`
+        gives an FFT-friendly one); (2 nx, 2 ny) by default.
+
+    Returns
+    -------
+    numpy.ndarray
+        (Mx, My) array for a linear (zero-padded) FFT convolution: entry [i, j] holds the
+        coefficient of cell offset (i, j) for i < nx and (i - Mx, j) for i > Mx - nx (likewise j);
+        the entries of offsets no pair of cells can have are zero.
+
+    Raises
+    ------
+    ValueError
+        If ``padded`` is smaller than 2n - 1 in either direction.
+
+    References
+    ----------
+    - A.E.H. Love, "The stress produced in a semi-infinite solid by pressure on part of the boundary",
+      Phil. Trans. R. Soc. Lond. A 228:377-420 (1929).
+    """
     return _offset_layout(love_square_integral, nx, ny, spacing, padded) / (math.pi * E_star)
 
 
-#: the zero-mean lattice sum of 1/|R| over the unit square lattice, sum' 1/|R| "minus" the
+#: the zero-mean lattice sum of 1/abs(R) over the unit square lattice, sum' 1/abs(R) "minus" the
 #: neutralising background: 4 zeta(1/2) beta(1/2) (Glasser & Zucker); the periodic
-#: zero-mean Green's function of 1/r is 1/|x| + MADELUNG_SQUARE / L + O(|x|^2 / L^3)
+#: zero-mean Green's function of 1/r is 1/abs(x) + MADELUNG_SQUARE / L + O(abs(x)^2 / L^3)
 MADELUNG_SQUARE = -3.900264920001956
 
 
 def love_influence_periodic(n: int, spacing: float, E_star: float, *, images: int = 16) -> np.ndarray:
-    """Influence coefficients of a half-space periodic over an n x n cell of side L = n Delta,
-    laid out for a circular FFT convolution (entry [i, j] is the offset (i, j) modulo n).
+    """Influence coefficients of a half-space periodic over an n x n cell of side L = n Delta.
 
     The image sum of Love's coefficients diverges like the number of images (1/r in 2-D), but
     by a constant: the displacement is defined up to the mean plane, and the coefficients are
     made zero-mean over the cell.  Truncated to the cells within M of the home cell, the
-    zero-mean sum still errs by a |x|^2 / M term (the far cells' quadratic term does not
+    zero-mean sum still errs by an abs(x)^2 / M term (the far cells' quadratic term does not
     average out) and a 1/M^2 term; sums to M, 2M and 4M (``images`` = 4M) and two Richardson
     steps remove both (measured: the coefficients change by 5e-6 and 1e-6 of the largest from
     16 to 32 at n = 8 and 32; the error then falls like M^-3).
+
+    Parameters
+    ----------
+    n : int
+        Cells per side of the periodic cell, >= 1.
+    spacing : float
+        Side Delta of the square elements, > 0.
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2), > 0.
+    images : int, optional
+        4M, four times the largest ring of image cells summed; a multiple of 4, >= 4.
+
+    Returns
+    -------
+    numpy.ndarray
+        (n, n) array for a circular FFT convolution: entry [i, j] is the coefficient of the
+        offset (i, j) modulo n.
+
+    Raises
+    ------
+    ValueError
+        If ``images`` is not a positive multiple of 4.
     """
     if images < 4 or images % 4:
         raise ValueError(f"images must be a multiple of 4, >= 4 (got {images})")
@@ -105,16 +177,54 @@ def love_influence_periodic(n: int, spacing: float, E_star: float, *, images: in
 
 
 def padded_shape(nx: int, ny: int) -> tuple[int, int]:
-    """The smallest FFT-friendly sizes that hold a linear convolution of an nx x ny grid."""
+    """Smallest FFT-friendly padded size that holds a linear convolution of an nx x ny grid.
+
+    Parameters
+    ----------
+    nx, ny : int
+        Cells of the grid along x and y, >= 1.
+
+    Returns
+    -------
+    tuple of int
+        (Mx, My), each the smallest fast real-FFT length >= 2n - 1.
+    """
     import scipy.fft as sfft
 
     return (sfft.next_fast_len(2 * nx - 1, real=True), sfft.next_fast_len(2 * ny - 1, real=True))
 
 
 def graded_square_integral(x, y, half_width: float, k: float):
-    """Integral of |r - r'|^-(1+k) over the square |x'|, |y'| <= b seen from (x, y) (theory
-    sheet, section 5): 1/(1-k) sum over the four edges of sgn(h) |h|^(1-k) [G(s2/|h|) - G(s1/|h|)],
-    G(t) = t 2F1(1/2, (1+k)/2; 3/2; -t^2).  k = 0 gives Love's asinh form."""
+    """Integral of abs(r - r')^-(1+k) over the square abs(x'), abs(y') <= b, seen from (x, y).
+
+    The closed form of the formula sheet (section 5): 1/(1-k) times the sum over the four edges
+    of sgn(h) abs(h)^(1-k) [G(s2/abs(h)) - G(s1/abs(h))], G(t) = t 2F1(1/2, (1+k)/2; 3/2; -t^2).
+    k = 0 gives Love's asinh form (:func:`love_square_integral`).
+
+    Parameters
+    ----------
+    x, y : float or array_like
+        Field point relative to the square's centre (broadcast together).
+    half_width : float
+        Half the side of the square, b > 0.
+    k : float
+        Exponent of the point kernel r^-(1+k), -1 < k < 1.
+
+    Returns
+    -------
+    numpy.ndarray
+        The integral at each field point.
+
+    Raises
+    ------
+    ValueError
+        If k is outside (-1, 1).
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     from scipy.special import hyp2f1
 
     if not -1.0 < k < 1.0:
@@ -139,8 +249,45 @@ def graded_square_integral(x, y, half_width: float, k: float):
 def graded_influence(
     nx: int, ny: int, spacing: float, E0: float, c0: float, k: float, padded: tuple[int, int] | None = None
 ) -> np.ndarray:
-    """Influence coefficients of a power-law graded half-space (w = A_k P / r^(1+k)), laid out
-    like :func:`love_influence`."""
+    """Influence coefficients of square elements on a power-law graded half-space.
+
+    The point-force displacement w = A_k P / r^(1+k) (:func:`contact_scene.theory.graded_green_coefficient`)
+    integrated over each element (:func:`graded_square_integral`), laid out like
+    :func:`love_influence`.
+
+    Parameters
+    ----------
+    nx, ny : int
+        Cells of the grid along x and y, >= 1.
+    spacing : float
+        Side Delta of the square elements, > 0.
+    E0 : float
+        Modulus at the reference depth of E(z) = E0 (z/c0)^k, > 0.
+    c0 : float
+        Reference depth c0, > 0.
+    k : float
+        Exponent of the grading, -1 < k < 1.
+    padded : tuple of int, optional
+        (Mx, My), the zero-padded size of the FFT convolution, each >= 2n - 1 (:func:`padded_shape`
+        gives an FFT-friendly one); (2 nx, 2 ny) by default.
+
+    Returns
+    -------
+    numpy.ndarray
+        (Mx, My) array for a linear (zero-padded) FFT convolution: entry [i, j] holds the
+        coefficient of cell offset (i, j) for i < nx and (i - Mx, j) for i > Mx - nx (likewise j);
+        the entries of offsets no pair of cells can have are zero.
+
+    Raises
+    ------
+    ValueError
+        If k is outside (-1, 1) or ``padded`` is smaller than 2n - 1.
+
+    References
+    ----------
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
+    """
     from contact_scene.theory import graded_green_coefficient
 
     K = _offset_layout(lambda X, Y, b: graded_square_integral(X, Y, b, k), nx, ny, spacing, padded)
@@ -148,8 +295,26 @@ def graded_influence(
 
 
 def point_kernel_transform(k: float = 0.0):
-    """The 2-D Fourier transform of the point kernel r^-(1+k), as a function of |q| (angular):
-    2^(1-k) pi Gamma((1-k)/2) / Gamma((1+k)/2) |q|^(k-1); 2 pi / |q| at k = 0."""
+    """2-D Fourier transform of the point kernel r^-(1+k), as a function of abs(q).
+
+    2^(1-k) pi Gamma((1-k)/2) / Gamma((1+k)/2) abs(q)^(k-1) (angular frequency q); 2 pi / abs(q)
+    at k = 0.
+
+    Parameters
+    ----------
+    k : float, optional
+        Exponent of the kernel, -1 < k < 1; 0 (homogeneous) by default.
+
+    Returns
+    -------
+    callable
+        q -> the transform at abs(q) = q > 0 (float or array).
+
+    Raises
+    ------
+    ValueError
+        If k is outside (-1, 1).
+    """
     from scipy.special import gamma
 
     if not -1.0 < k < 1.0:
@@ -159,16 +324,32 @@ def point_kernel_transform(k: float = 0.0):
 
 
 def lattice_symbol(padded: tuple[int, int], spacing: float, transform, *, terms: int = 3) -> np.ndarray:
-    """The Fourier symbol of square-element influence coefficients on the infinite lattice,
-    sampled at the frequencies of a ``padded`` grid (rfft2 half-spectrum layout).
+    """Fourier symbol of square-element influence coefficients on the infinite lattice.
 
-    ``transform(|q|)`` is the point kernel's 2-D Fourier transform (e.g. 2/(E* |q|) for a
-    homogeneous body); by Poisson summation the symbol is the sum over the aliases
-    q + 2 pi m / Delta of transform(|q|) sinc(q_x Delta/2) sinc(q_y Delta/2), here over
-    |m_x|, |m_y| <= ``terms``.  Unlike the transform of the coefficients truncated to the
-    padded window, which for an elongated window has near-zero and negative modes, it is
-    positive, as the element energy p^T C p is (the truncated alias sum was positive in every
-    case tested).  Entry [0, 0] (the continuum's 1/|q| singularity) is inf."""
+    Sampled at the frequencies of a ``padded`` grid (rfft2 half-spectrum layout).  By Poisson
+    summation the symbol is the sum over the aliases q + 2 pi m / Delta of transform(abs(q))
+    sinc(q_x Delta/2) sinc(q_y Delta/2), here over abs(m_x), abs(m_y) <= ``terms``.  Unlike the
+    transform of the coefficients truncated to the padded window, which for an elongated window
+    has near-zero and negative modes, it is positive, as the element energy p^T C p is (the
+    truncated alias sum was positive in every case tested).
+
+    Parameters
+    ----------
+    padded : tuple of int
+        (Mx, My), the padded grid whose frequencies are sampled.
+    spacing : float
+        Side Delta of the square elements, > 0.
+    transform : callable
+        The point kernel's 2-D Fourier transform as a function of abs(q) > 0 (e.g. 2/(E* abs(q))
+        for a homogeneous body, or a multiple of :func:`point_kernel_transform`).
+    terms : int, optional
+        Aliases summed in each direction on each side, >= 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        (Mx, My // 2 + 1) real array; entry [0, 0] (the continuum's 1/abs(q) singularity) is inf.
+    """
     Mx, My = padded
     h = float(spacing)
     kx = 2.0 * math.pi * np.fft.fftfreq(Mx, d=h)[:, None]

@@ -13,21 +13,47 @@ __all__ = ["HalfSpaceOperator", "default_workers"]
 
 
 def default_workers() -> int:
-    """FFT threads for one solve: 1.  On this 2-core machine a second FFT thread did not
-    speed up the pruned convolution at any size up to 1080^2 padded and slowed small grids
-    twofold (``benchmarks/bench_matvec.py``); the second core serves parallel sweeps instead."""
+    """FFT threads for one solve: 1.
+
+    A second FFT thread did not speed up the pruned convolution on two cores at any size up to
+    1080^2 padded and slowed small grids twofold (``benchmarks/bench_matvec.py``); the second core
+    serves parallel sweeps instead.
+
+    Returns
+    -------
+    int
+        The number of FFT workers, 1.
+    """
     return 1
 
 
 @dataclass(frozen=True, eq=False)
 class HalfSpaceOperator:
-    """Displacement u (nx x ny) from pressure p (nx x ny) by linear convolution with the
-    element influence coefficients, zero-padded (to at least 2n - 1) so the grid does not wrap.
+    """The half-space operator u = C p as a zero-padded FFT convolution.
 
-    ``kernel`` is laid out as :func:`halfspace.kernel.love_influence` returns it.  The
-    transforms are pruned: the input occupies only nx of the Mx padded rows and only nx rows
-    of the output are wanted, so the row transforms run on nx rows, not Mx (about 3/4 of the
-    work of a plain padded rfft2/irfft2 pair; measured in ``benchmarks/bench_matvec.py``).
+    Displacement u (nx x ny) from pressure p (nx x ny) by linear convolution with the element
+    influence coefficients, zero-padded (to at least 2n - 1) so the grid does not wrap.  The
+    transforms are pruned: the input occupies only nx of the Mx padded rows and only nx rows of
+    the output are wanted, so the row transforms run on nx rows, not Mx (about 3/4 of the work
+    of a plain padded rfft2/irfft2 pair; measured in ``benchmarks/bench_matvec.py``).
+
+    Parameters
+    ----------
+    kernel : numpy.ndarray
+        The influence coefficients, laid out as :func:`halfspace.love_influence` returns them,
+        (Mx, My) with Mx >= 2 nx - 1 and My >= 2 ny - 1; for ``periodic``, as
+        :func:`halfspace.love_influence_periodic` returns them, with the grid's shape.
+    shape : tuple of int
+        (nx, ny), the grid of the pressure and the displacement.
+    workers : int, optional
+        FFT threads (:func:`default_workers`), >= 1.
+    periodic : bool, optional
+        Circular convolution over the grid itself (a periodic array of faces).
+
+    Raises
+    ------
+    ValueError
+        If the kernel's shape does not fit the grid.
     """
 
     kernel: np.ndarray
@@ -50,6 +76,7 @@ class HalfSpaceOperator:
 
     @property
     def padded_shape(self) -> tuple[int, int]:
+        """(Mx, My), the shape of the kernel and of the padded FFT grid."""
         return self.kernel.shape
 
     @property
@@ -58,7 +85,21 @@ class HalfSpaceOperator:
         return self._symbol
 
     def convolve(self, p: np.ndarray, symbol: np.ndarray | None = None) -> np.ndarray:
-        """Linear convolution of p (nx x ny, any float dtype) with ``symbol`` (default: C)."""
+        """Linear (or, for a periodic operator, circular) convolution of p with a symbol.
+
+        Parameters
+        ----------
+        p : numpy.ndarray
+            (nx, ny) array, any float dtype.
+        symbol : numpy.ndarray or None, optional
+            A real Fourier symbol in the layout of :attr:`symbol` (float32 or float64); this
+            operator's own, C, by default.
+
+        Returns
+        -------
+        numpy.ndarray
+            (nx, ny) array, the convolution on the grid.
+        """
         nx, ny = self.shape
         Mx, My = self.kernel.shape
         s = self._symbol if symbol is None else symbol
@@ -71,10 +112,28 @@ class HalfSpaceOperator:
         return sfft.irfft(c, n=My, axis=1, workers=self.workers)[:, :ny]
 
     def window(self, shape: tuple[int, int]) -> HalfSpaceOperator:
-        """The same operator on a smaller grid (wx x wy cells, any wx <= nx, wy <= ny): its
-        coefficients are this kernel's for the offsets such a grid has, on the smaller padded
-        grid :func:`~halfspace.kernel.padded_shape` gives.  A contact set that fits into the
-        smaller grid then costs its FFTs instead of the whole face's, with the same C_SS."""
+        """The same operator on a smaller grid of wx x wy cells (wx <= nx, wy <= ny).
+
+        Its coefficients are this kernel's for the offsets such a grid has, on the smaller padded
+        grid :func:`~halfspace.padded_shape` gives.  A contact set that fits into the smaller grid
+        then costs its FFTs instead of the whole face's, with the same C_SS.
+
+        Parameters
+        ----------
+        shape : tuple of int
+            (wx, wy), with 1 <= wx <= nx and 1 <= wy <= ny.
+
+        Returns
+        -------
+        HalfSpaceOperator
+            The operator on the smaller grid.
+
+        Raises
+        ------
+        ValueError
+            If the window does not fit into the grid, or the operator is periodic (its images fill
+            the whole cell).
+        """
         if self.periodic:
             raise ValueError("a periodic operator has no smaller window: its images fill the whole cell")
         nx, ny = self.shape
@@ -97,18 +156,59 @@ class HalfSpaceOperator:
         return HalfSpaceOperator(K, (wx, wy), self.workers)
 
     def apply(self, p: np.ndarray) -> np.ndarray:
-        """u = C p on the nx x ny grid."""
+        """u = C p on the nx x ny grid.
+
+        Parameters
+        ----------
+        p : numpy.ndarray
+            (nx, ny) pressures on the elements.
+
+        Returns
+        -------
+        numpy.ndarray
+            (nx, ny) displacements at the element centres.
+        """
         return self.convolve(np.asarray(p, float))
 
     def apply_masked(self, values: np.ndarray, mask: np.ndarray) -> np.ndarray:
-        """u = C p on the whole grid, where p equals ``values`` on ``mask`` and 0 elsewhere."""
+        """u = C p on the whole grid, where p equals ``values`` on ``mask`` and 0 elsewhere.
+
+        Parameters
+        ----------
+        values : numpy.ndarray
+            Pressures of the elements in ``mask``, in the order of ``p[mask]``.
+        mask : numpy.ndarray
+            Boolean (nx, ny) array: the loaded elements.
+
+        Returns
+        -------
+        numpy.ndarray
+            (nx, ny) displacements at the element centres.
+        """
         p = np.zeros(self.shape)
         p[mask] = values
         return self.convolve(p)
 
     def apply_symbol(self, values: np.ndarray, mask: np.ndarray, symbol: np.ndarray) -> np.ndarray:
-        """Like ``apply_masked`` with another Fourier symbol (same layout, float32 or float64),
-        restricted to ``mask``; computed in the symbol's precision."""
+        """Like :meth:`apply_masked` with another Fourier symbol, restricted to ``mask``.
+
+        Computed in the symbol's precision (float32 or float64), e.g. for a single-precision
+        preconditioner.
+
+        Parameters
+        ----------
+        values : numpy.ndarray
+            Pressures of the elements in ``mask``, in the order of ``p[mask]``.
+        mask : numpy.ndarray
+            Boolean (nx, ny) array: the loaded elements, and those where the result is returned.
+        symbol : numpy.ndarray
+            A real Fourier symbol in the layout of :attr:`symbol`.
+
+        Returns
+        -------
+        numpy.ndarray
+            The convolution on ``mask`` (float64), in the order of ``u[mask]``.
+        """
         p = np.zeros(self.shape, dtype=symbol.dtype)
         p[mask] = values
         return self.convolve(p, symbol)[mask].astype(float)
