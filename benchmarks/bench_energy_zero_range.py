@@ -84,7 +84,7 @@ def write(path: Path, args, started, load, rows, records):
         ["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True
     ).stdout.strip()
     out = {
-        "written_by": "benchmarks/bench_energy_zero_range.py",
+        "written_by": _timing.command(),
         "date": started.isoformat(timespec="seconds"),
         "machine": {
             "platform": platform.platform(),

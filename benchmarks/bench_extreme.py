@@ -1,19 +1,28 @@
 """Stiff and extreme cases: converged or not, error against theory, iterations, time.
 (The same table is part of the full report: ``crossval report``.)
 
-    python benchmarks/bench_extreme.py
+    python benchmarks/bench_extreme.py [--update]
+
+``--update`` writes docs/accuracy_extreme.json (rendered into docs/accuracy.md by
+``python benchmarks/docs_tables.py``).
 """
 
 from __future__ import annotations
 
-import _timing  # noqa: F401
+import sys
+
+import _timing
 
 from crossval.extremes import HEADERS, extreme_cases
 
 
-def main():
-    print(_timing.table(extreme_cases(), HEADERS))
+def main(update=False):
+    record = _timing.provenance_record()
+    rows = extreme_cases()
+    print(_timing.table(rows, HEADERS))
+    if update:
+        _timing.write_doc_table("accuracy_extreme", HEADERS, rows, record)
 
 
 if __name__ == "__main__":
-    main()
+    main(update="--update" in sys.argv)

@@ -116,7 +116,7 @@ def main() -> None:
         out.write_text(
             json.dumps(
                 {
-                    "written_by": "benchmarks/bench_fem.py",
+                    "written_by": _timing.command(),
                     "date": started.isoformat(timespec="seconds"),
                     "machine": {
                         "platform": platform.platform(),

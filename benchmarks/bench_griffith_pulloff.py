@@ -1,11 +1,18 @@
 """Cost of a full Pohrt-Popov pull-off, in matvec-equivalents measured in the same run.
 
-    python benchmarks/bench_griffith_pulloff.py [--star512]
+    python benchmarks/bench_griffith_pulloff.py [--star512] [--update]
 
 For each case: median wall time of the pull-off, the median time of one bare padded FFT
 convolution (scipy.fft rfft2 -> multiply -> irfft2) at the same padded size, their ratio
 (the "matvec-equivalents"), and the operator applications actually counted.  A second
-table shows which solver choices change the answer (they must not) and what they cost.
+table shows which solver choices change the answer (they must not) and what they cost, with
+the CG iterations per contact solve: on a circle, a 4:1 rectangle (whose padded window's
+symbol has negative modes, so the preconditioner must be the lattice's) and a star, whose tips
+detach first so that its later solves fit into smaller windows.  ``--star512`` adds the
+paper's size, the five-ray star on a 512^2 grid over its bounding box (a quarter of an hour or
+more).  ``--update`` writes docs/performance_griffith_pulloff.json and
+docs/performance_griffith_choices.json (rendered into docs/performance.md by
+``python benchmarks/docs_tables.py``).
 """
 
 from __future__ import annotations
@@ -39,10 +46,27 @@ def time_solve(scene, settings, repeat):
     return float(np.median(ts)), res
 
 
-def main(star512=False):
+COST_HEADERS = ["case", "N/radius", "grid", "wall s", "bare conv ms", "matvec-eq", "matvecs", "solves", "events", "F_A"]
+CHOICE_HEADERS = [
+    "case",
+    "choice",
+    "wall s",
+    "/ default",
+    "matvecs",
+    "CG it/solve",
+    "F_A",
+    "|dF_A|/F_A",
+    "|d det| rel",
+    "same areas",
+]
+
+
+def main(star512=False, update=False):
+    record = _timing.provenance_record()
     E = cs.Homogeneous(0.75, 0.5)
     circle = cs.Scene(cs.Indenter(cs.Circle(1.0)), E, cs.Adhesion(1.0))
     star = cs.Scene(cs.Indenter(cs.Star(5, 1.0, 0.45)), E, cs.Adhesion(1.0))
+    rectangle = cs.Scene(cs.Indenter(cs.Rectangle(4.0, 1.0)), E, cs.Adhesion(1.0))
     cases = [("circle", circle, 32, 3), ("circle", circle, 64, 3), ("circle", circle, 128, 3)]
     if star512:
         # the paper's 512 x 512 grid over the star's 2.0 x 2.0 bounding box (takes long)
@@ -67,29 +91,15 @@ def main(star512=False):
                 f"{r.pulloff_force:.6g}",
             ]
         )
-        print(
-            _timing.table(
-                rows,
-                [
-                    "case",
-                    "N/radius",
-                    "grid",
-                    "wall s",
-                    "bare conv ms",
-                    "matvec-eq",
-                    "matvecs",
-                    "solves",
-                    "events",
-                    "F_A",
-                ],
-            ),
-            flush=True,
-        )
+        print(_timing.table(rows, COST_HEADERS), flush=True)
+    cost = rows
     print()
-    # which choices change the answer: a circle, and a star, whose tips detach first so that
-    # its later solves fit into smaller windows
+    # which choices change the answer: a circle, an elongated face, and a star, whose tips
+    # detach first so that its later solves fit into smaller windows
+    choices = []
     for name, sc, N in [
         ("circle", circle, 48),
+        ("rectangle 4:1", rectangle, 32),
         ("star 128^2", star, 128 * star.indenter.shape.equivalent_radius / 2.0),
     ]:
         rows, ref = [], None
@@ -106,24 +116,25 @@ def main(star512=False):
             same = np.array_equal(r.curve.contact_area, ref.curve.contact_area)
             rows.append(
                 [
+                    f"{name}, {N:.0f} per radius",
                     label,
                     f"{wall:.2f}",
                     f"{wall / ref_wall:.2f}",
                     r.info["matvecs"],
+                    f"{r.iterations / max(r.info['solves'], 1):.1f}",
                     f"{r.pulloff_force:.10g}",
                     f"{abs(r.pulloff_force / ref.pulloff_force - 1):.1e}",
                     f"{abs(r.detachment_approach / ref.detachment_approach - 1):.1e}",
                     "yes" if same else "no",
                 ]
             )
-        print(f"{name}, N = {N:.0f} per radius:")
-        print(
-            _timing.table(
-                rows, ["choice", "wall s", "/ default", "matvecs", "F_A", "|dF_A|/F_A", "|d det| rel", "same areas"]
-            )
-        )
+        print(_timing.table(rows, CHOICE_HEADERS), flush=True)
         print()
+        choices += rows
+    if update:
+        _timing.write_doc_table("performance_griffith_pulloff", COST_HEADERS, cost, record)
+        _timing.write_doc_table("performance_griffith_choices", CHOICE_HEADERS, choices, record)
 
 
 if __name__ == "__main__":
-    main(star512="--star512" in sys.argv)
+    main(star512="--star512" in sys.argv, update="--update" in sys.argv)
