@@ -20,7 +20,27 @@ __all__ = ["PressResult", "press_to_approach", "pressed_state"]
 
 @dataclass(frozen=True, eq=False)
 class PressResult:
-    """The non-adhesive indentation state (the paper presses without adhesion)."""
+    """The non-adhesive indentation state (the paper presses without adhesion).
+
+    Returned by :func:`bem_griffith.press`.
+
+    Attributes
+    ----------
+    approach : float
+        Approach d the press reached (0 for a flat face just touching).
+    force : float
+        Normal force F there (compressive > 0).
+    contact : numpy.ndarray
+        Boolean mask of the elements in contact, on the face's grid, indexed ``[ix, iy]``.
+    contact_area : float
+        Area of the contact: its elements times spacing^2.
+    stiffness : float
+        dF/dd with the contact set held fixed (the unloading stiffness).
+    spacing : float
+        Element side of the grid.
+    origin : tuple of float
+        (x, y) of the centre of element (0, 0).
+    """
 
     approach: float
     force: float

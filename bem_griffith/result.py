@@ -37,8 +37,38 @@ class _GriffithInfoBase(TypedDict):
 
 
 class GriffithInfo(_GriffithInfoBase, total=False):
-    """``Result.info`` of the Griffith BEM (diagnostics for people and JSON).  The graded keys
-    are present for graded bodies with adhesion and k != 0 only."""
+    """``Result.info`` of the Griffith BEM: diagnostics for people and JSON.
+
+    Attributes
+    ----------
+    matvecs : int
+        Operator applications (= ``stats.operator_applications``).
+    solves : int
+        Contact-set solves (= ``stats.linear_solves``).
+    events : int
+        Driver steps (= ``stats.events``).
+    grid : list of int
+        [nx, ny] of the face's grid.
+    face_elements : int
+        Elements of the face (= ``stats.unknowns``).
+    critical_stress : float
+        sigma_c as used (Eq. 22; Eq. 42, calibrated by default, for graded bodies).
+    press_approach : float
+        The approach the press reached.
+    cascades_cut : int
+        Detachment cascades ended early by the Eq. 14 certainty bound.
+    windowed_solves : int
+        Contact-set solves on a smaller window of the grid.
+    criterion : str
+        The detachment rule: ``"paper"`` (Eq. 22) or ``"stress_intensity"``.
+    graded_criterion : str
+        ``"calibrated"`` or ``"eq42"``; present for graded bodies with adhesion and k != 0 only,
+        like the two keys below.
+    criterion_ratio : float
+        r(k) that divides Eq. 42's sigma_c (calibrated only).
+    criterion_uncertainty : float
+        u(k), the uncertainty of r (calibrated only).
+    """
 
     graded_criterion: Literal["calibrated", "eq42"]
     criterion_ratio: float  # r(k) that divides Eq. 42's sigma_c (calibrated only)

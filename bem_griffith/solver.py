@@ -41,9 +41,52 @@ __all__ = [
 
 
 def solve(scene: Scene, settings: GriffithSettings | None = None, *, callback=None) -> Result:
-    """Press the scene's punch without adhesion, then pull it off; see the module doc.
+    """Press the scene's punch without adhesion, then pull it off with the local Griffith criterion.
 
-    ``callback(approach, force, contact_area)`` is called at every recorded point.
+    The face is rasterised on the grid of ``settings.grid``; an element of the contact detaches
+    when its tensile stress exceeds sigma_c (Eq. 22; Eq. 42 with its calibration on a graded
+    half-space), and re-attaches when its gap closes.  See the module for the steps.
+
+    Parameters
+    ----------
+    scene : contact_scene.Scene
+        The punch, material, adhesion, loading and outputs.
+    settings : bem_griffith.GriffithSettings or None, optional
+        Grid, driver, criterion and solver tolerances; ``GriffithSettings()`` by default.
+    callback : callable, optional
+        ``callback(approach, force, contact_area)``, called at every recorded point of the curve
+        (progress).
+
+    Returns
+    -------
+    contact_scene.Result
+        ``method = "bem_griffith"``; ``pulloff_force`` (the largest tension on the recorded
+        curve, 0 if it never goes tensile) and ``pulloff_approach``; ``stiffness`` (dF/dd of the
+        pressed contact with its contact set held fixed); ``converged`` (False, with a message,
+        when a contact solve missed its tolerance, a detachment cascade did not settle or the
+        pull was aborted); ``grid_spacing``; ``curve`` (when the scene's outputs ask for it);
+        ``detached`` and ``detachment_approach``; ``snapshots`` at the requested approaches;
+        ``last_stable``; ``iterations`` (conjugate-gradient iterations) and ``residual`` (the
+        worst relative residual); ``timings`` (setup, press, pull); ``messages``; ``info``
+        (:class:`bem_griffith.GriffithInfo`); ``stats``; ``face_area`` (the rasterised face);
+        ``discretisation = "grid"``; ``error_bars`` from the method's error model.
+        ``accuracy_estimate`` is not set.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming the field: ``grid.spacing`` (a grid too coarse for the face), ``grid.period`` or
+        ``grid.periodic`` (a periodic cell too large, or a graded periodic body),
+        ``settings.max_memory_gb`` (a grid beyond the memory limit), ``loading.press_approach``
+        (a press that touches nothing), ``settings.graded_criterion`` (a calibrated criterion
+        outside its measured exponents).
+
+    References
+    ----------
+    - R. Pohrt, V.L. Popov, "Adhesive contact simulation of elastic solids using local mesh-dependent
+      detachment criterion in boundary elements method", Facta Universitatis, Mech. Eng. 13(1):3-10 (2015).
+    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+      material gradients", Friction 5(3):308-325 (2017).
     """
     settings = settings or GriffithSettings()
     t0 = time.perf_counter()
@@ -70,8 +113,30 @@ def solve(scene: Scene, settings: GriffithSettings | None = None, *, callback=No
 
 
 def press(scene: Scene, settings: GriffithSettings | None = None) -> PressResult:
-    """Press without adhesion as the scene's loading says (a flat face: just touching) and
-    return the state; no pull.  Cheap: stiffness studies (Eq. 9) need only this."""
+    """Press without adhesion as the scene's loading says, and return the state; no pull.
+
+    A flat face without a press approach or force is just touching.  Cheap: stiffness studies
+    (Eq. 9) need only this.
+
+    Parameters
+    ----------
+    scene : contact_scene.Scene
+        The punch, material and loading (its adhesion is not used).
+    settings : bem_griffith.GriffithSettings or None, optional
+        Grid and solver tolerances; ``GriffithSettings()`` by default.
+
+    Returns
+    -------
+    bem_griffith.PressResult
+        Approach, force, contact set and area, and the unloading stiffness of the pressed state.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming the field, as :func:`solve`.
+    RuntimeError
+        If the contact solve does not converge.
+    """
     settings = settings or GriffithSettings()
     problem = build_problem(scene, settings)
     approach, state = pressed_state(problem, scene, settings, WorkCounters())
@@ -90,6 +155,27 @@ def press(scene: Scene, settings: GriffithSettings | None = None) -> PressResult
 
 
 def solve_with_resolution(scene: Scene, resolution: float | None, *, callback=None) -> Result:
-    """The registry's entry: ``resolution`` = elements across sqrt(A/pi) (default 32)."""
+    """Solve at a resolution, the entry of the method registry (:mod:`crossval`).
+
+    Parameters
+    ----------
+    scene : contact_scene.Scene
+        The scene to solve.
+    resolution : float or None
+        Elements across the equivalent radius sqrt(A/pi) (A the nominal face area), > 0; 32 when
+        None.
+    callback : callable, optional
+        ``callback(approach, force, contact_area)`` at every recorded point, as for :func:`solve`.
+
+    Returns
+    -------
+    contact_scene.Result
+        As :func:`solve` with default settings on that grid.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming the field, as :func:`solve`.
+    """
     grid = Grid(elements_per_radius=resolution if resolution is not None else 32.0)
     return solve(scene, GriffithSettings(grid=grid), callback=callback)
