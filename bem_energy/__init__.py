@@ -33,8 +33,38 @@ __all__ = [
 
 
 def solve(scene: Scene, settings: EnergySettings | ZeroRangeSettings | None = None, *, callback=None) -> Result:
-    """A scene with an adhesion range runs that range; one without (and w > 0) gets the
-    zero-range limit (:func:`zero_range`)."""
+    """Solve a scene: its finite range, or the zero-range limit when it has none.
+
+    A scene with an adhesion range runs that range (:func:`pull_off`); one without (and w > 0)
+    gets the zero-range limit (:func:`zero_range`).
+
+    Parameters
+    ----------
+    scene : contact_scene.Scene
+        The punch, material, adhesion, loading and outputs.
+    settings : bem_energy.EnergySettings or bem_energy.ZeroRangeSettings or None, optional
+        The settings of the run; an ``EnergySettings`` given for a zero-range scene becomes the
+        settings of each range of the default sequence, and a ``ZeroRangeSettings`` given for a
+        finite range contributes its ``energy``.  Defaults when None.
+    callback : callable, optional
+        ``callback(approach, force, contact_area)``, called at every recorded point of the curve
+        (progress).
+
+    Returns
+    -------
+    contact_scene.Result
+        As :func:`pull_off` or :func:`zero_range` returns it.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming the offending field (see :func:`pull_off`).
+
+    References
+    ----------
+    - V. Rey, G. Anciaux, J.-F. Molinari, "Normal adhesive contact on rough surfaces: efficient algorithm
+      for FFT-based BEM resolution", Comput. Mech. 60:69-81 (2017).
+    """
     ad = scene.adhesion
     if ad.work_of_adhesion > 0 and ad.range is None:
         if isinstance(settings, EnergySettings):
@@ -46,13 +76,37 @@ def solve(scene: Scene, settings: EnergySettings | ZeroRangeSettings | None = No
 
 
 def solve_with_resolution(scene: Scene, resolution: float | None, *, callback=None) -> Result:
-    """The registry's entry.  Finite range: ``resolution`` = elements per sqrt(A/pi); without
-    one, a grid that resolves the process zone (:func:`finite_range_grid`: at least 32 per
-    radius and the potential's default elements per l_c; refused when that grid is too large).
-    A resolution too coarse for the process zone is run and reported not converged.  Zero
-    range: without a resolution the default (accurate, minutes) sequence; with one, the
-    harness's coarse sequence (:meth:`ZeroRangeSettings.coarse`) at ``resolution`` elements
-    per process zone, whose bias on faces with corners the harness allows for."""
+    """Solve at a resolution, the entry of the method registry (:mod:`crossval`).
+
+    Finite range: ``resolution`` elements per sqrt(A/pi); without one, a grid that resolves the
+    process zone (:func:`finite_range_grid`: at least 32 per radius and the potential's default
+    elements per l_c; refused when that grid is too large).  A resolution too coarse for the
+    process zone is run and reported not converged.  Zero range: without a resolution the
+    default (accurate, minutes) sequence; with one, the harness's coarse sequence
+    (:meth:`ZeroRangeSettings.coarse`) at ``resolution`` elements per process zone, whose bias on
+    faces with corners the harness allows for.
+
+    Parameters
+    ----------
+    scene : contact_scene.Scene
+        The punch, material, adhesion, loading and outputs.
+    resolution : float or None
+        Elements per radius sqrt(A/pi) (finite range) or per process zone l_c (zero range), > 0;
+        None for the defaults above.
+    callback : callable, optional
+        ``callback(approach, force, contact_area)``, called at every recorded point of the curve
+        (progress).
+
+    Returns
+    -------
+    contact_scene.Result
+        As :func:`pull_off` or :func:`zero_range` returns it.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming the offending field (see :func:`pull_off` and :func:`finite_range_grid`).
+    """
     ad = scene.adhesion
     if ad.work_of_adhesion > 0 and ad.range is None:
         zs = ZeroRangeSettings() if resolution is None else ZeroRangeSettings.coarse(resolution)

@@ -37,6 +37,30 @@ def _one_blas_thread():
 
 @dataclass(frozen=True, eq=False)
 class Minimum:
+    """A constrained minimum of the energy, as :func:`bem_energy.minimise` returns it.
+
+    Attributes
+    ----------
+    U : numpy.ndarray
+        Surface displacements on the padded grid.
+    P : numpy.ndarray
+        Pressures C^-1 U on the padded grid.
+    energy : float
+        The energy Pi(U).
+    iterations : int
+        Iterations of the minimiser.
+    evaluations : int
+        Energy and gradient evaluations.
+    converged : bool
+        Whether the scaled projected gradient reached the tolerance.
+    gradient : float
+        The scaled projected-gradient norm reached.
+    message : str
+        The minimiser's own message, if any.
+    peeled : bool
+        Stopped because the contact fell (``peel_fraction``): detaching.
+    """
+
     U: np.ndarray
     P: np.ndarray
     energy: float
@@ -84,13 +108,48 @@ def minimise(
     memory: int = 10,
     peel_fraction: float | None = None,
 ) -> Minimum:
-    """The constrained minimum from the warm start ``U0``.  ``peel_fraction`` s (projected CG
-    only): stop, not converged and ``peeled``, once the face cells at the wall have fallen
-    below (1 - s) of the most this minimisation had, i.e. the state is peeling off toward the
-    detached branch (see :meth:`bem_energy.equilibria.Equilibria.pulling_trial`)."""
+    """The constrained minimum of the energy from the warm start ``U0``.
+
+    Minimises Pi(U) under the hard wall g >= 0 on the face at approach d.
+
+    Parameters
+    ----------
+    prob : bem_energy.EnergyProblem
+        The discrete problem.
+    U0 : numpy.ndarray
+        Warm start on the padded grid (projected onto the wall).
+    d : float
+        Approach of the punch.
+    adhesive : bool
+        Whether the adhesive potential is switched on.
+    method : str, optional
+        ``"lbfgsb"`` (scipy's L-BFGS-B), ``"pk"`` (projected conjugate gradients) or ``"cvxpy"``
+        (small grids).
+    gtol : float, optional
+        Tolerance on the scaled projected gradient, > 0.
+    max_iterations : int, optional
+        Most iterations, >= 1.
+    memory : int, optional
+        L-BFGS-B correction pairs, >= 1.
+    peel_fraction : float or None, optional
+        s, projected CG only: stop, not converged and ``peeled``, once the face cells at the wall
+        have fallen below (1 - s) of the most this minimisation had, i.e. the state is peeling
+        off toward the detached branch (see :meth:`bem_energy.equilibria.Equilibria.pulling_trial`).
+
+    Returns
+    -------
+    bem_energy.Minimum
+        The minimum reached, with ``converged`` False (and a message) when the tolerance was not
+        reached.
+
+    Raises
+    ------
+    ValueError
+        If ``method`` is unknown.
+    """
     # the vector work (L-BFGS-B's updates, the dot products here) goes through BLAS; threaded
     # BLAS on these vector sizes was measured 4x (L-BFGS-B) to 20x (dot products) slower on
-    # this shared 2-core machine, so every minimisation runs with one BLAS thread
+    # a shared 2-core machine, so every minimisation runs with one BLAS thread
     with _one_blas_thread():
         if method == "lbfgsb":
             return _lbfgsb(prob, U0, d, adhesive, gtol, max_iterations, memory)

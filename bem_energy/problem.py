@@ -37,6 +37,35 @@ def estimate_memory_gb(nx: int, ny: int, memory: int = 10) -> float:
 
 @dataclass(frozen=True, eq=False)
 class EnergyProblem:
+    """The discrete energy of a rigid face on a half-space, on a zero-padded FFT grid.
+
+    Built by :func:`build_problem`; see the module for the energy and why the padding region
+    carries free variables.
+
+    Attributes
+    ----------
+    symbol : numpy.ndarray
+        rfft2 of the padded kernel: U = C P.
+    face : numpy.ndarray
+        Boolean mask of the face's cells on the padded grid.
+    n : tuple of int
+        (nx, ny), the raster's grid, in the top-left corner of the padded grid.
+    height : numpy.ndarray
+        The profile's height on the face cells (1-D, in the order of ``U[face]``).
+    spacing : float
+        Element side.
+    origin : tuple of float
+        (x, y) of the centre of cell (0, 0).
+    potential : bem_energy.Potential or None
+        The adhesive potential; None without adhesion.
+    modulus : float
+        E* (E_k = 1 / (pi A_k) for a graded body): sets the process zone.
+    self_compliance : float
+        C_00, the kernel's self coefficient: sets the minimisers' scales.
+    exponent : float
+        The grading exponent k (0: homogeneous).
+    """
+
     symbol: np.ndarray  # rfft2 of the padded kernel: U = C P
     face: np.ndarray  # bool on the padded grid
     n: tuple[int, int]  # the raster's grid (top-left corner of the padded grid)
@@ -55,14 +84,17 @@ class EnergyProblem:
 
     @property
     def padded(self) -> tuple[int, int]:
+        """(Mx, My), the padded grid of the variables."""
         return self.face.shape
 
     @property
     def cell(self) -> float:
+        """Area of one element, spacing^2."""
         return self.spacing**2
 
     @property
     def process_zone(self) -> float:
+        """The process zone l_c of the potential (:func:`bem_energy.process_zone_length`); inf without adhesion."""
         if self.potential is None:
             return math.inf
         return process_zone_length(
@@ -70,24 +102,98 @@ class EnergyProblem:
         )
 
     def pressure(self, U: np.ndarray) -> np.ndarray:
+        """P = C^-1 U on the padded grid.
+
+        Parameters
+        ----------
+        U : numpy.ndarray
+            Surface displacements (down > 0) on the padded grid.
+
+        Returns
+        -------
+        numpy.ndarray
+            The pressures on the padded grid.
+        """
         return sfft.irfft2(sfft.rfft2(U) / self.symbol, s=self.padded)
 
     def displacement(self, P: np.ndarray) -> np.ndarray:
+        """U = C P on the padded grid.
+
+        Parameters
+        ----------
+        P : numpy.ndarray
+            Pressures on the padded grid.
+
+        Returns
+        -------
+        numpy.ndarray
+            The surface displacements (down > 0) on the padded grid.
+        """
         return sfft.irfft2(sfft.rfft2(P) * self.symbol, s=self.padded)
 
     def preconditioned(self, G: np.ndarray) -> np.ndarray:
         """C G in single precision (returned in double): the projected CG's preconditioner.
-        It only chooses search directions, whose step lengths, energies and gradients are
-        evaluated in double precision, so its round-off (1e-7 relative) changes the iterates'
-        path by that much but not the minimum they converge to."""
+
+        It only chooses search directions, whose step lengths, energies and gradients are evaluated
+        in double precision, so its round-off (1e-7 relative) changes the iterates' path by that
+        much but not the minimum they converge to.
+
+        Parameters
+        ----------
+        G : numpy.ndarray
+            A gradient on the padded grid.
+
+        Returns
+        -------
+        numpy.ndarray
+            C G, float64, on the padded grid.
+        """
         G32 = G.astype(np.float32)
         return sfft.irfft2(sfft.rfft2(G32) * self.symbol_single, s=self.padded).astype(np.float64)
 
     def gap(self, U: np.ndarray, d: float) -> np.ndarray:
+        """The gap g = U - (d - h) on the face cells (>= 0 at the hard wall).
+
+        Parameters
+        ----------
+        U : numpy.ndarray
+            Surface displacements on the padded grid.
+        d : float
+            Approach of the punch.
+
+        Returns
+        -------
+        numpy.ndarray
+            The gaps, 1-D in the order of ``U[face]``.
+        """
         return U[self.face] - (d - self.height)
 
     def energy(self, U: np.ndarray, d: float, adhesive: bool, P: np.ndarray | None = None):
-        """(Pi, dPi/dU, P) in physical units."""
+        """The energy Pi(U), its gradient and the pressure, in physical units.
+
+        Pi = cell [1/2 U.P + sum over the face of phi(g)] (the module's energy); the adhesive term
+        only when ``adhesive`` and the problem has a potential.
+
+        Parameters
+        ----------
+        U : numpy.ndarray
+            Surface displacements on the padded grid.
+        d : float
+            Approach of the punch.
+        adhesive : bool
+            Whether the adhesive potential is switched on.
+        P : numpy.ndarray or None, optional
+            C^-1 U when already known (saves two FFTs).
+
+        Returns
+        -------
+        energy : float
+            Pi.
+        gradient : numpy.ndarray
+            dPi/dU on the padded grid.
+        P : numpy.ndarray
+            The pressures C^-1 U.
+        """
         if P is None:
             P = self.pressure(U)
         E = 0.5 * float(np.vdot(U, P))
@@ -99,9 +205,33 @@ class EnergyProblem:
         return self.cell * E, self.cell * G, P
 
     def force(self, P: np.ndarray) -> float:
+        """The normal force on the punch: cell times the sum of P over the face.
+
+        Parameters
+        ----------
+        P : numpy.ndarray
+            Pressures on the padded grid.
+
+        Returns
+        -------
+        float
+            The force (compressive > 0, tensile < 0).
+        """
         return float(self.cell * np.sum(P[self.face]))
 
     def crop(self, A: np.ndarray) -> np.ndarray:
+        """The raster's (nx, ny) corner of a padded-grid array.
+
+        Parameters
+        ----------
+        A : numpy.ndarray
+            An array on the padded grid.
+
+        Returns
+        -------
+        numpy.ndarray
+            A view of its first nx x ny entries, indexed like the raster's mask.
+        """
         return A[: self.n[0], : self.n[1]]
 
 
@@ -121,8 +251,40 @@ def build_problem(
     max_memory_gb: float = 8.0,
     kernel: str = "collocation",
 ) -> EnergyProblem:
-    """The discrete problem of ``scene`` on a grid of ``spacing``, with the half-space
-    discretised by ``kernel`` (see :class:`bem_energy.EnergySettings`)."""
+    """The discrete problem of ``scene`` on a grid of ``spacing``.
+
+    The face is rasterised, the half-space discretised by ``kernel`` (see
+    :class:`bem_energy.EnergySettings`) on a square padded grid whose circulant is checked to be
+    positive definite.
+
+    Parameters
+    ----------
+    scene : contact_scene.Scene
+        Face, profile and material.
+    spacing : float
+        Element side, > 0.
+    potential : bem_energy.Potential or None
+        The adhesive potential; None without adhesion.
+    memory : int, optional
+        L-BFGS-B correction pairs, for the memory estimate, >= 1.
+    max_memory_gb : float, optional
+        Largest working memory allowed (GB), > 0.
+    kernel : str, optional
+        ``"collocation"`` (point-collocated, :func:`halfspace.collocated_influence`) or
+        ``"love"`` (element integrals, :func:`halfspace.love_influence`).
+
+    Returns
+    -------
+    bem_energy.EnergyProblem
+        The problem.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming ``settings.kernel`` (an unknown kernel), ``settings.grid`` (a grid beyond
+        ``max_memory_gb``), ``grid.spacing`` (a grid too coarse for the face) or ``material``
+        (an influence matrix that is not positive definite).
+    """
     if kernel not in KERNELS:
         raise SceneError("settings.kernel", f"must be one of {', '.join(map(repr, sorted(KERNELS)))} (got {kernel!r})")
     homogeneous, graded = KERNELS[kernel]

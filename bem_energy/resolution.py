@@ -74,11 +74,32 @@ DEFAULT_ELEMENTS_PER_RADIUS = 32.0
 
 
 def finite_range_grid(scene: Scene, resolution: float | None = None) -> Grid:
-    """The grid of a finite-range run: ``resolution`` elements per radius sqrt(A/pi) when
-    given (a grid too coarse for the process zone is run and reported not converged), else
-    the finer of 32 per radius and the potential's default elements per process zone
-    (:data:`PROCESS_ZONE_ELEMENTS`).  A default grid wider than :data:`MAX_DEFAULT_SIDE`
-    cells is refused, naming the shortest range that fits."""
+    """The grid of a finite-range run, fine enough for its process zone.
+
+    ``resolution`` elements per radius sqrt(A/pi) when given (a grid too coarse for the process
+    zone is run and reported not converged), else the finer of 32 per radius and the potential's
+    default elements per process zone (:data:`PROCESS_ZONE_ELEMENTS`).  A default grid wider than
+    :data:`MAX_DEFAULT_SIDE` cells is refused, naming the shortest range that fits.
+
+    Parameters
+    ----------
+    scene : contact_scene.Scene
+        The scene; its adhesion range and material set the process zone.
+    resolution : float or None, optional
+        Elements per radius sqrt(A/pi), > 0; None for the default above.
+
+    Returns
+    -------
+    contact_scene.Grid
+        The grid, by ``elements_per_radius`` when a resolution is given, else by ``spacing``.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming ``adhesion.range``: adhesion without a range, or a range whose process zone needs
+        a default grid wider than :data:`MAX_DEFAULT_SIDE` (the message gives the shortest range
+        that fits).
+    """
     if resolution is not None:
         return Grid(elements_per_radius=resolution)
     shape = scene.indenter.shape

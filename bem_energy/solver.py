@@ -82,7 +82,55 @@ def pull_off(
     callback=None,
     max_memory_gb: float = 8.0,
 ) -> Result:
-    """One finite-range pull-off (``potential`` defaults to the scene's adhesion)."""
+    """One finite-range pull-off by energy minimisation under a hard wall.
+
+    Press without adhesion, switch the adhesive potential on and follow the attached branch by
+    continuation until it snaps off; the force maximum is the pull-off force (see the module).
+
+    Parameters
+    ----------
+    scene : contact_scene.Scene
+        The punch, material, adhesion, loading and outputs.
+    settings : bem_energy.EnergySettings
+        Grid, minimiser, tolerances and continuation steps.
+    spacing : float or None, optional
+        Element side, > 0; overrides ``settings.grid`` when given.
+    potential : bem_energy.Potential or None, optional
+        The adhesive potential (work, range, kind); the scene's adhesion by default.
+    callback : callable, optional
+        ``callback(approach, force, contact_area)``, called at every recorded point of the curve
+        (progress).
+    max_memory_gb : float, optional
+        Largest working memory allowed for the grid (GB), > 0.
+
+    Returns
+    -------
+    contact_scene.Result
+        ``method = "bem_energy"``; ``pulloff_force`` and ``pulloff_approach`` (the force maximum
+        of the pull, refined at the snap-off fold or where the curve is smooth); ``stiffness``
+        (the initial slope of the non-adhesive force); ``converged`` (False, with a message,
+        when a minimisation did not converge, the pull stopped early or the grid does not
+        resolve the process zone); ``grid_spacing``; ``curve`` (when the scene's outputs ask for
+        it); ``detached`` and ``detachment_approach`` (the snap-off); ``snapshots``;
+        ``last_stable`` (the attached state before the snap-off); ``iterations`` and
+        ``residual`` (the worst scaled projected gradient); ``timings``; ``messages``; ``info``
+        (:class:`bem_energy.EnergyInfo`); ``stats``; ``face_area`` (the rasterised face);
+        ``discretisation = "grid"``; ``error_bars``.  ``accuracy_estimate`` is not set.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming the field: ``adhesion.range`` (adhesion without a range), ``grid.periodic`` (the
+        method has no periodic half-space), ``grid.spacing`` (a grid too coarse for the face),
+        ``settings.grid`` (beyond ``max_memory_gb``), ``settings.kernel``, ``settings.minimiser``
+        (cvxpy on a large grid), ``material`` (an influence matrix that is not positive definite)
+        or ``loading.press_approach`` (a press that touches nothing).
+
+    References
+    ----------
+    - V. Rey, G. Anciaux, J.-F. Molinari, "Normal adhesive contact on rough surfaces: efficient algorithm
+      for FFT-based BEM resolution", Comput. Mech. 60:69-81 (2017).
+    """
     t0 = time.perf_counter()
     if settings.grid.periodic:
         raise SceneError(

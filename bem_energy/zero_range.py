@@ -52,8 +52,11 @@ class SequenceInfo(TypedDict):
 
 
 class ZeroRangeInfo(EnergyInfo):
-    """``Result.info`` of a zero-range limit: the finest range's :class:`EnergyInfo` and the
-    sequence under ``"zero_range"``."""
+    """``Result.info`` of a zero-range limit: the finest range's :class:`EnergyInfo` and the sequence.
+
+    The sequence (:class:`SequenceInfo`: process zones, ranges, spacings, forces scaled and raw,
+    approaches, the rate used) is under ``"zero_range"``.
+    """
 
     zero_range: SequenceInfo
 
@@ -123,7 +126,7 @@ def tail_bracket(h, F, rates: tuple[float, float] = RATE_BRACKET) -> tuple[float
 
 
 def richardson(h: np.ndarray, F: np.ndarray, rate: float | None = None):
-    """Extrapolate F(h) to h = 0: (F0, rate, estimate).
+    """Extrapolate F(h) to h = 0 and estimate the error of the extrapolation.
 
     ``rate`` None (default): F0 + c h^p with p fitted as well (needs three points); when no
     rate in [0.2, 2] fits, the two-term F0 + c1 h^(1/2) + c2 h (rate None).  The apparent rate
@@ -131,7 +134,7 @@ def richardson(h: np.ndarray, F: np.ndarray, rate: float | None = None):
     0.6 and the square's from 0.4 to 0.95 (benchmarks/study_energy_zero_range.py), so a rate
     fixed from one face biases another.  A given ``rate``: least squares with that rate.
 
-    The estimate bounds |F0 - F(0)| if the tail's effective rate (:func:`tail_bracket`) lies in
+    The estimate bounds abs(F0 - F(0)) if the tail's effective rate (:func:`tail_bracket`) lies in
     :data:`RATE_BRACKET`: it is the larger distance from F0 to the two limits the finest step
     then allows, so it covers a limit anywhere between them whichever procedure gave F0 (a
     fitted rate that overshoots, as the circle's 0.3 over its coarse ranges does, widens it).
@@ -139,6 +142,28 @@ def richardson(h: np.ndarray, F: np.ndarray, rate: float | None = None):
     like sqrt(l_c) from one going like l_c, and a model fitted to them (the earlier spread
     between fits) fell short of the error by up to a factor 30.
 
+    Parameters
+    ----------
+    h : numpy.ndarray
+        The parameter of the sequence (the process zones l_c), > 0, at least two distinct values,
+        in any order.
+    F : numpy.ndarray
+        The values at ``h`` (pull-off forces).
+    rate : float or None, optional
+        The power p of the leading term, > 0; fitted when None (with fewer than three points,
+        1/2).
+
+    Returns
+    -------
+    F0 : float
+        The extrapolated value at h = 0.
+    rate : float or None
+        The rate used: the fitted or given p; None when the two-term fit was used.
+    estimate : float
+        The error estimate described above, in the units of F.
+
+    Notes
+    -----
     Validated on the study stored in tests/data/zero_range_study.json (written by
     ``benchmarks/study_energy_zero_range.py --no-griffith --json``; checked by
     tests/test_zero_range_estimator.py): circle, square and equilateral triangle, E* = 1,
@@ -173,6 +198,47 @@ def richardson(h: np.ndarray, F: np.ndarray, rate: float | None = None):
 
 
 def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callback=None) -> Result:
+    """The zero-range (JKR / Griffith) pull-off by extrapolating finite ranges to l_c -> 0.
+
+    Each process zone l_c = r a of ``settings.ratios`` (a = sqrt(A/pi)) runs as a finite-range
+    pull-off (:func:`pull_off`) on a grid that resolves it; the forces (scaled to the nominal
+    face area unless ``normalise_area`` is off) are extrapolated by :func:`richardson`.
+
+    Parameters
+    ----------
+    scene : contact_scene.Scene
+        The punch, material, adhesion, loading and outputs.
+    settings : bem_energy.ZeroRangeSettings or None, optional
+        The sequence, its grids and the extrapolation; ``ZeroRangeSettings()`` (the accurate
+        sequence down to l_c = 0.01 a, minutes) by default.
+    callback : callable, optional
+        ``callback(approach, force, contact_area)``, called at every recorded point of the curve
+        (progress).
+
+    Returns
+    -------
+    contact_scene.Result
+        The finest range's result with: ``pulloff_force`` the extrapolated force (the finest
+        range's when the extrapolation fails); ``accuracy_estimate`` the extrapolation's error
+        estimate relative to that force (None when it failed); ``converged`` False when a range
+        did not converge or detach, or the extrapolation failed; ``iterations``, ``timings`` and
+        ``stats`` summed over the sequence (``timings["extrapolation"]`` the rest);
+        ``messages`` on the extrapolation and every range's own; ``info`` a
+        :class:`ZeroRangeInfo`; ``face_area`` None when the forces refer to the nominal area;
+        ``discretisation = "extrapolated"``; ``error_bars`` with the extrapolation's estimate
+        for the force.  The curve, fields, pull-off approach and stiffness are the finest
+        range's: the approach at the force maximum of a finite range does not tend to the
+        zero-range one over such a sequence.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming the field: ``adhesion.range`` (adhesion without a range), ``grid.periodic`` (the
+        method has no periodic half-space), ``grid.spacing`` (a grid too coarse for the face),
+        ``settings.grid`` (beyond ``max_memory_gb``), ``settings.kernel``, ``settings.minimiser``
+        (cvxpy on a large grid), ``material`` (an influence matrix that is not positive definite)
+        or ``loading.press_approach`` (a press that touches nothing).
+    """
     settings = settings or ZeroRangeSettings()
     t0 = time.perf_counter()
     w = scene.adhesion.work_of_adhesion
