@@ -17,13 +17,36 @@ __all__ = ["Reference", "reference", "assert_matches_reference"]
 
 @dataclass(frozen=True, eq=False)
 class Reference:
-    """A reference result and its error bars (the method's, from its convergence studies)."""
+    """A reference result and its error bars (the method's, from its convergence studies).
+
+    Returned by :func:`reference`; :func:`assert_matches_reference` compares a solver's numbers
+    with it.
+
+    Attributes
+    ----------
+    scene : contact_scene.Scene
+        The scene solved.
+    result : contact_scene.Result
+        The reference method's result; its ``error_bars`` are the reference's accuracy.
+    """
 
     scene: cs.Scene
     result: cs.Result
 
     def error_bar(self, quantity: str) -> float | None:
-        """The reference's own relative accuracy on ``quantity``, or None if it claims none."""
+        """The reference's own relative accuracy on ``quantity``, or None if it claims none.
+
+        Parameters
+        ----------
+        quantity : str
+            A field of :class:`contact_scene.Result`: ``"pulloff_force"``, ``"pulloff_approach"``
+            or ``"stiffness"``.
+
+        Returns
+        -------
+        float or None
+            The bound on abs(value / exact - 1), or None.
+        """
         bar = self.result.error_bars.get(quantity)
         return None if bar is None else bar.relative
 
@@ -35,9 +58,31 @@ class Reference:
 
 
 def reference(scene_or_name, *, resolution: float = 64) -> Reference:
-    """The most accurate method's result for a scene, a built-in scene's name or a scene file's
-    path: the FEM for circular flat punches it covers, else the Griffith BEM at ``resolution``
-    elements per radius."""
+    """The most accurate method's result for a scene.
+
+    The FEM for the circular flat punches it covers (with its error estimate as bar), else the
+    Griffith BEM at ``resolution`` elements per radius (with its error model's bars).
+
+    Parameters
+    ----------
+    scene_or_name : contact_scene.Scene or str or os.PathLike
+        A scene, the name of a built-in scene (``crossval scene list``) or a scene file's path.
+    resolution : float, optional
+        Elements per radius sqrt(A/pi) of the Griffith BEM when the FEM does not apply, > 0.
+
+    Returns
+    -------
+    crossval.Reference
+        The scene and the reference result.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Field ``file`` for an unknown name or an unreadable file, the offending field of an
+        invalid scene file, or field ``scene`` when no registered method can give a reference.
+    RuntimeError
+        If the reference solve did not converge (its messages say why).
+    """
     scene = scene_or_name if isinstance(scene_or_name, cs.Scene) else load_scene_or_builtin(scene_or_name)
     bounded = reference_method(scene, "bounded")
     if bounded is not None:
@@ -73,11 +118,38 @@ def _from_curve(approach, force):
 def assert_matches_reference(
     ref: Reference, *, pulloff_force=None, pulloff_approach=None, stiffness=None, curve=None, rtol: float = 0.0
 ) -> None:
-    """Raise AssertionError naming every quantity that differs from the reference by more than
-    the reference's own error bar on it plus ``rtol``.  A ``curve`` (approach, force) is reduced
-    to its largest tensile force, the approach there, and the slope of its first segment; of
-    these, quantities the reference has no bar for are not compared.  A quantity given
-    explicitly that the reference has no bar for is an error (ValueError), not a pass."""
+    """Assert that a solver's numbers match the reference within its error bars plus ``rtol``.
+
+    A ``curve`` (approach, force) is reduced to its largest tensile force, the approach there,
+    and the slope of its first segment; of these, quantities the reference has no bar for are
+    not compared.  A quantity given explicitly that the reference has no bar for is an error
+    (ValueError), not a pass.  Signs are this package's: F < 0 in tension, d < 0 when pulled.
+
+    Parameters
+    ----------
+    ref : crossval.Reference
+        The reference (:func:`reference`).
+    pulloff_force : float, optional
+        The pull-off force, a magnitude (>= 0).
+    pulloff_approach : float, optional
+        The approach at the pull-off force (< 0 when pulled).
+    stiffness : float, optional
+        The initial stiffness dF/dd.
+    curve : tuple of array_like, optional
+        (approach, force), two 1-D arrays of equal length >= 2; the quantities given explicitly
+        take precedence over those read from the curve.
+    rtol : float, optional
+        Relative tolerance added to the reference's own bar, >= 0.
+
+    Raises
+    ------
+    AssertionError
+        Naming every quantity that differs from the reference by more than the reference's bar
+        on it plus ``rtol`` (value, reference, difference, tolerance); also for a negative
+        ``pulloff_force`` or a curve without tension (with a note on sign conventions).
+    ValueError
+        If a quantity given explicitly has no bar in the reference, or ``curve`` is malformed.
+    """
     __tracebackhide__ = True  # pytest shows the message, not this function's body
     if pulloff_force is not None and pulloff_force < 0:
         raise AssertionError(f"pulloff_force = {pulloff_force:.6g} is negative; it is a magnitude: {_SIGNS}")

@@ -272,9 +272,40 @@ def study(
     cache=None,
     callback=None,
 ) -> Study:
-    """Run each method over its resolutions and measure the error of ``quantity`` against the
-    best reference available (module docstring); the runs a reference needs beyond the methods
-    asked for (the FEM, the Griffith sequence) are run as well but not reported as rows."""
+    """Error of each method against resolution and run time, measured against the best reference.
+
+    Each method runs over its resolutions; the error of ``quantity`` is measured against the best
+    reference available (the module's list); the runs a reference needs beyond the methods asked
+    for (the FEM, the Griffith sequence) are run as well but not reported as rows.
+
+    Parameters
+    ----------
+    scene : contact_scene.Scene
+        The scene to study.
+    methods : iterable of str, optional
+        Method names (keys of :data:`crossval.METHODS`); every applicable method by default.
+    resolutions : dict, optional
+        Method name -> its resolutions (BEM: elements per radius; FEM: 1/grading);
+        :data:`DEFAULT_RESOLUTIONS` for the others.
+    quantity : str, optional
+        The :class:`contact_scene.Result` field studied: ``"pulloff_force"`` (default),
+        ``"pulloff_approach"`` or ``"stiffness"``.
+    workers : int, optional
+        Local processes, >= 1.
+    scheduler : str or distributed.Client, optional
+        A dask.distributed address or client to run the solves on instead.
+    cache : crossval.cache.ResultCache, optional
+        Reuses stored results and stores new ones.
+    callback : callable, optional
+        ``callback(job, result)`` after each solve (progress).
+
+    Returns
+    -------
+    crossval.study.Study
+        The rows (method, resolution, wall time, value, error), the reference used, and per
+        method the fitted order in resolution and in wall time or an envelope error <= c/N, with
+        the reason where no order is meaningful.
+    """
     names = [m.name for m in applicable_methods(scene)] if methods is None else list(methods)
     given = dict(resolutions or {})
     res = {m: tuple(given.get(m, DEFAULT_RESOLUTIONS[m])) for m in names}
