@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from contact_scene import SceneError
-from contact_scene.errors import check_choice, check_real
+from contact_scene.validation import check_fields, choice, real
 
 __all__ = [
     "Potential",
@@ -42,14 +42,13 @@ class Potential:
     ``"maugis_dugdale"`` phi = -w max(0, 1 - g/rho) (constant stress w/rho up to rho;
     concave, with a kink at g = rho)."""
 
-    work: float
-    range: float
-    kind: str = "exponential"
+    # named as the scene's adhesion fields they come from
+    work: float = real(ge=0, name="adhesion.work_of_adhesion")
+    range: float = real(gt=0)
+    kind: str = choice("exponential", ("exponential", "maugis_dugdale"), name="adhesion.potential")
 
     def __post_init__(self):
-        object.__setattr__(self, "work", check_real("adhesion.work_of_adhesion", self.work, lo=0))
-        object.__setattr__(self, "range", check_real("adhesion.range", self.range, lo=0, lo_open=True))
-        check_choice("adhesion.potential", self.kind, {"exponential", "maugis_dugdale"})
+        check_fields(self, "adhesion")
 
     def energy(self, g: np.ndarray) -> np.ndarray:
         w, r = self.work, self.range

@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from contact_scene import Grid, SceneError
-from contact_scene.errors import check_choice, check_int, check_real
+from contact_scene.validation import check_fields, choice, flag, real, reals, whole
 
 __all__ = ["EnergySettings", "ZeroRangeSettings"]
 
@@ -63,34 +63,22 @@ class EnergySettings:
     """
 
     grid: Grid = field(default_factory=lambda: Grid(elements_per_radius=32))
-    minimiser: str = "pk"
-    steps: int = 40
-    snap_tolerance: float = 1e-3
-    gtol: float = 1e-6
-    max_iterations: int = 50_000
-    memory: int = 10
-    max_face_elements_cvxpy: int = 700
-    kernel: str = "collocation"
-    locate_detachment: bool = True
-    stop_peeling_trials: bool = True
+    minimiser: str = choice("pk", ("lbfgsb", "pk", "cvxpy"))
+    steps: int = whole(40, ge=2, le=100_000)
+    snap_tolerance: float = real(1e-3, gt=0, le=0.1)
+    gtol: float = real(1e-6, gt=0, le=1e-2)
+    max_iterations: int = whole(50_000, ge=1)
+    memory: int = whole(10, ge=1, le=100)
+    max_face_elements_cvxpy: int = whole(700, ge=1)
+    kernel: str = choice("collocation", ("collocation", "love"))
+    locate_detachment: bool = flag(True)
+    stop_peeling_trials: bool = flag(True)
 
     def __post_init__(self):
+        # a type, not a range
         if not isinstance(self.grid, Grid):
             raise SceneError("settings.grid", "must be a contact_scene.Grid")
-        check_choice("settings.minimiser", self.minimiser, {"lbfgsb", "pk", "cvxpy"})
-        check_choice("settings.kernel", self.kernel, {"collocation", "love"})
-        for name in ("locate_detachment", "stop_peeling_trials"):
-            if not isinstance(getattr(self, name), bool):
-                raise SceneError(f"settings.{name}", f"must be true or false (got {getattr(self, name)!r})")
-        object.__setattr__(self, "steps", check_int("settings.steps", self.steps, lo=2, hi=100_000))
-        object.__setattr__(
-            self,
-            "snap_tolerance",
-            check_real("settings.snap_tolerance", self.snap_tolerance, lo=0, hi=0.1, lo_open=True),
-        )
-        object.__setattr__(self, "gtol", check_real("settings.gtol", self.gtol, lo=0, hi=1e-2, lo_open=True))
-        object.__setattr__(self, "max_iterations", check_int("settings.max_iterations", self.max_iterations, lo=1))
-        object.__setattr__(self, "memory", check_int("settings.memory", self.memory, lo=1, hi=100))
+        check_fields(self, "settings")
 
 
 def sequence_energy_settings() -> EnergySettings:
@@ -117,12 +105,12 @@ class ZeroRangeSettings:
     nominal face area (the staircase area changes from grid to grid).  ``energy``: the
     settings of each range (:func:`sequence_energy_settings` by default)."""
 
-    ratios: tuple[float, ...] = (0.08, 0.04, 0.02, 0.01)
-    elements_per_process_zone: float = 2.0
-    rate: float | None = None
-    minimum_elements_per_radius: float = 24.0
-    potential: str = "exponential"
-    normalise_area: bool = True
+    ratios: tuple[float, ...] = reals((0.08, 0.04, 0.02, 0.01), gt=0, le=1)
+    elements_per_process_zone: float = real(2.0, ge=0.25, le=64)
+    rate: float | None = real(None, gt=0, le=4, optional=True)
+    minimum_elements_per_radius: float = real(24.0, ge=4, le=1e4)
+    potential: str = choice("exponential", ("exponential", "maugis_dugdale"))
+    normalise_area: bool = flag(True)
     energy: EnergySettings = field(default_factory=sequence_energy_settings)
 
     @classmethod
@@ -138,7 +126,9 @@ class ZeroRangeSettings:
         return cls(elements_per_process_zone=elements_per_process_zone, **kw)
 
     def __post_init__(self):
-        rs = tuple(check_real("settings.ratios", r, lo=0, hi=1, lo_open=True) for r in self.ratios)
+        check_fields(self, "settings")
+        # how many ratios a fit needs depends on the rate: a rule on the sequence, not a range
+        rs = self.ratios
         if len(rs) < 2 or len(set(rs)) != len(rs):
             raise SceneError("settings.ratios", "need at least two distinct process-zone ratios l_c / a")
         if self.rate is None and len(rs) < 3:
@@ -148,18 +138,3 @@ class ZeroRangeSettings:
                 "give three or more, or a fixed rate",
             )
         object.__setattr__(self, "ratios", tuple(sorted(rs, reverse=True)))
-        object.__setattr__(
-            self,
-            "elements_per_process_zone",
-            check_real("settings.elements_per_process_zone", self.elements_per_process_zone, lo=0.25, hi=64),
-        )
-        if self.rate is not None:
-            object.__setattr__(self, "rate", check_real("settings.rate", self.rate, lo=0, hi=4, lo_open=True))
-        object.__setattr__(
-            self,
-            "minimum_elements_per_radius",
-            check_real("settings.minimum_elements_per_radius", self.minimum_elements_per_radius, lo=4, hi=1e4),
-        )
-        check_choice("settings.potential", self.potential, {"exponential", "maugis_dugdale"})
-        if not isinstance(self.normalise_area, bool):
-            raise SceneError("settings.normalise_area", f"must be true or false (got {self.normalise_area!r})")

@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from contact_scene import Grid, SceneError
-from contact_scene.errors import check_choice, check_int, check_real
+from contact_scene.validation import check_fields, choice, flag, real, whole
 from halfspace.operator import default_workers
 
 from .criterion import CRITERIA
@@ -65,45 +65,28 @@ class GriffithSettings:
     """
 
     grid: Grid = field(default_factory=lambda: Grid(elements_per_radius=32))
-    driver: str = "event"
-    step: float | None = None
-    rtol: float = 1e-10
-    maxiter: int = 2000
-    tie_tolerance: float = 1e-6
-    stop_when_certainly_detached: bool = True
-    certainty_margin: float = 0.02
-    workers: int = field(default_factory=default_workers)
-    max_memory_gb: float = 8.0
-    preconditioner: str = "fourier"
-    shrink_window: bool = True
-    graded_criterion: str = "calibrated"
-    criterion: str = "paper"
+    driver: str = choice("event", ("event", "fixed_step"))
+    step: float | None = real(None, gt=0, optional=True, when=lambda s: s.driver == "fixed_step")
+    rtol: float = real(1e-10, gt=0, le=1e-2)
+    maxiter: int = whole(2000, ge=1)
+    tie_tolerance: float = real(1e-6, ge=0, le=1e-2)
+    stop_when_certainly_detached: bool = flag(True)
+    certainty_margin: float = real(0.02, gt=0)
+    workers: int = whole(ge=1, le=256, factory=default_workers)
+    max_memory_gb: float = real(8.0, gt=0)
+    preconditioner: str = choice("fourier", ("none", "fourier"))
+    shrink_window: bool = flag(True)
+    graded_criterion: str = choice("calibrated", tuple(CRITERIA))
+    criterion: str = choice("paper", ("paper", "stress_intensity"))
 
     def __post_init__(self):
+        # a type, not a range
         if not isinstance(self.grid, Grid):
             raise SceneError("settings.grid", "must be a contact_scene.Grid")
-        check_choice("settings.driver", self.driver, {"event", "fixed_step"})
-        if self.driver == "fixed_step":
-            if self.step is None:
-                raise SceneError("settings.step", "the fixed-step driver needs step > 0")
-            object.__setattr__(self, "step", check_real("settings.step", self.step, lo=0, lo_open=True))
-        object.__setattr__(self, "rtol", check_real("settings.rtol", self.rtol, lo=0, hi=1e-2, lo_open=True))
-        object.__setattr__(self, "maxiter", check_int("settings.maxiter", self.maxiter, lo=1))
-        object.__setattr__(
-            self, "tie_tolerance", check_real("settings.tie_tolerance", self.tie_tolerance, lo=0, hi=1e-2)
-        )
-        object.__setattr__(
-            self, "certainty_margin", check_real("settings.certainty_margin", self.certainty_margin, lo=0, lo_open=True)
-        )
-        object.__setattr__(self, "workers", check_int("settings.workers", self.workers, lo=1, hi=256))
-        object.__setattr__(
-            self, "max_memory_gb", check_real("settings.max_memory_gb", self.max_memory_gb, lo=0, lo_open=True)
-        )
-        if not isinstance(self.shrink_window, bool):
-            raise SceneError("settings.shrink_window", f"must be True or False (got {self.shrink_window!r})")
-        check_choice("settings.preconditioner", self.preconditioner, {"none", "fourier"})
-        check_choice("settings.graded_criterion", self.graded_criterion, set(CRITERIA))
-        check_choice("settings.criterion", self.criterion, {"paper", "stress_intensity"})
+        check_fields(self, "settings")
+        # rules joining two fields, not ranges of one
+        if self.driver == "fixed_step" and self.step is None:
+            raise SceneError("settings.step", "the fixed-step driver needs step > 0")
         if self.criterion == "stress_intensity" and self.grid.periodic:
             raise SceneError(
                 "settings.criterion",

@@ -28,7 +28,7 @@ import numpy as np
 from skfem import MeshTri
 
 from contact_scene import Circle, Curve, ErrorBar, Homogeneous, PowerLawGraded, Result, Scene, SceneError, SolverStats
-from contact_scene.errors import check_choice, check_int, check_real
+from contact_scene.validation import check_fields, choice, flag, real, whole
 
 from .model import (
     KERNELS,
@@ -84,24 +84,17 @@ class FemSettings:
         (``benchmarks/bench_fem.py`` runs them side by side).
     """
 
-    grading: float = 1.0
-    order: int = 4
-    domain_radius: float = 2.0**20
-    h_min: float = 1e-5
-    vce_radius: float = 0.25
-    compliance_check: bool = False
+    grading: float = real(1.0, ge=0.05, le=4.0)
+    order: int = whole(4, ge=2, le=4)
+    domain_radius: float = real(2.0**20, ge=16.0, le=2.0**40)
+    h_min: float = real(1e-5, ge=1e-12, le=0.1)
+    vce_radius: float = real(0.25, ge=0.01, le=0.5)
+    compliance_check: bool = flag(False)
     fields_path: str | None = None
-    kernels: str = "vectorised"
+    kernels: str = choice("vectorised", KERNELS)
 
     def __post_init__(self):
-        check_choice("fem.kernels", self.kernels, KERNELS)
-        object.__setattr__(self, "grading", check_real("fem.grading", self.grading, lo=0.05, hi=4.0))
-        object.__setattr__(self, "order", check_int("fem.order", self.order, lo=2, hi=4))
-        object.__setattr__(
-            self, "domain_radius", check_real("fem.domain_radius", self.domain_radius, lo=16.0, hi=2.0**40)
-        )
-        object.__setattr__(self, "h_min", check_real("fem.h_min", self.h_min, lo=1e-12, hi=0.1))
-        object.__setattr__(self, "vce_radius", check_real("fem.vce_radius", self.vce_radius, lo=0.01, hi=0.5))
+        check_fields(self, "fem")
 
 
 @dataclass(frozen=True, eq=False)
