@@ -9,10 +9,10 @@
    and rotations against the grid: its "converged value" and the staircase spread around it.
 
     python benchmarks/study_energy_zero_range.py [--quick] [--no-griffith] [--faces circle,square]
-        [--ratios 0.32,0.16,...] [--epz 2] [--json PATH] [--update]
+        [--ratios 0.32,0.16,...] [--epz 2] [--json PATH] [--full] [--update]
 
-Long: the l_c = 0.01 a runs are 200 per radius, the Griffith triangle at 128 per radius takes
-minutes per rotation; --quick stops at 0.02 a and 64 per radius.  ``--json PATH`` stores each
+Long: the l_c = 0.01 a runs are 200 per radius; the Griffith solver runs up to 96 per radius
+(``--full``: 128, minutes per rotation); --quick stops at 0.02 a and 64 per radius.  ``--json PATH`` stores each
 face's sequence with full precision (ratios, spacings, areas, raw and area-scaled forces, the
 command) under the key "<face>-epz<elements per l_c>", merged into the file if it exists: the
 zero-range estimator is validated on these (tests/test_zero_range_estimator.py).
@@ -193,6 +193,7 @@ def store(path, key, record):
 if __name__ == "__main__":
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--full", action="store_true", help="the Griffith solver up to 128 per radius (default 96)")
     ap.add_argument("--no-griffith", action="store_true", help="skip part 3 (the Griffith solver)")
     ap.add_argument("--faces", default="circle,square,triangle")
     ap.add_argument("--ratios", default=None, help="comma-separated l_c / a (default 0.32 ... 0.01)")
@@ -233,7 +234,7 @@ if __name__ == "__main__":
         )
     if args.no_griffith:
         sys.exit(0)
-    Ns = (32, 48, 64) if quick else (48, 64, 96, 128)
+    Ns = (32, 48, 64) if quick else (48, 64, 96, 128) if args.full else (48, 64, 96)
     angles = (0.0, 15.0, 30.0, 45.0)
     rotations = []
     for name in ("square", "triangle"):
