@@ -24,12 +24,14 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
+
 import contact_scene as cs
 from contact_scene import theory as T
 
 from .methods import METHODS, applicable_methods
 
-__all__ = ["Check", "Comparison", "compare", "check_results", "reference_values", "error_bar"]
+__all__ = ["Check", "Comparison", "compare", "check_results", "raster_checks", "reference_values", "error_bar"]
 
 
 @dataclass(frozen=True)
@@ -39,8 +41,8 @@ class Check:
     value: float
     reference: float
     reference_name: str
-    tolerance: float  # relative, or the allowed interval's slack for bounds
-    kind: str = "relative"  # "relative" | "bounds"
+    tolerance: float  # relative; the allowed interval's slack for bounds; cells for "exact"
+    kind: str = "relative"  # "relative" | "bounds" | "exact" (a count that must not exceed tolerance)
     upper: float | None = None  # for bounds
     #: "validation": an independent check; "calibration": a residual of a quantity the method
     #: was fitted to (it can fail, but its passing validates nothing)
@@ -61,6 +63,8 @@ class Check:
         if self.kind == "bounds":
             upper = math.inf if self.upper is None else self.upper
             return self.reference * (1 - self.tolerance) <= self.value <= upper * (1 + 1e-12)
+        if self.kind == "exact":
+            return self.value <= self.tolerance
         return abs(self.difference) <= self.tolerance
 
     @property
@@ -83,6 +87,11 @@ class Check:
                 f"{self.method}: {self.quantity} = {self.value:.6g}, calibration residual against "
                 f"{self.reference_name} {self.reference:.6g}: {self.difference:+.3%} (bound {self.tolerance:.3%}; "
                 "matches by construction, not a validation)"
+            )
+        if self.kind == "exact":
+            return (
+                f"{self.method}: {self.quantity}: {self.value:.0f} cells differ "
+                f"(allowed {self.tolerance:.0f}; {self.basis})"
             )
         if self.kind == "bounds":
             return (
@@ -166,6 +175,49 @@ def _same_grid(a: cs.Result, b: cs.Result) -> bool:
     )
 
 
+def _cells_differing(a: np.ndarray, b: np.ndarray) -> int:
+    if a.shape != b.shape:
+        return int(max(np.count_nonzero(a), np.count_nonzero(b)))
+    return int(np.count_nonzero(a != b))
+
+
+def raster_checks(scene: cs.Scene, results: dict) -> list[Check]:
+    """The face's raster at each grid method's element size is equivariant: the raster of the
+    mirrored (rotated by 90 degrees) face is the mirrored (rotated) raster, cell for cell.
+
+    Exact by the raster's rule (nodes anchored at the centroid, ``contact_scene.raster``), for
+    every face, symmetric or not; a grid that is off by part of a cell, or a cell test that is
+    not the centre's, breaks it while leaving every force within the staircase's error.  One
+    check per distinct element size; rasterising costs milliseconds at the report's grids."""
+    shape = scene.indenter.shape
+    checks: list[Check] = []
+    seen: set[float] = set()
+    for name, r in results.items():
+        h = r.grid_spacing
+        if r.discretisation != "grid" or h is None or h in seen:
+            continue
+        seen.add(h)
+        m = cs.rasterise(shape, h).mask
+        for quantity, moved, expected in (
+            ("raster mirror", cs.rasterise(shape.mirrored(), h).mask, (m[::-1, :],)),
+            ("raster rotation 90", cs.rasterise(shape.rotated(90), h).mask, (np.rot90(m), np.rot90(m, -1))),
+        ):
+            wrong = min(_cells_differing(moved, e) for e in expected)
+            checks.append(
+                Check(
+                    name,
+                    quantity,
+                    float(wrong),
+                    0.0,
+                    "the transformed raster",
+                    0.0,
+                    kind="exact",
+                    basis=f"cells at h = {h:.4g}, nodes anchored at the centroid (contact_scene.raster)",
+                )
+            )
+    return checks
+
+
 def check_results(scene: cs.Scene, results: dict) -> tuple[Check, ...]:
     """Checks of solved results against the closed forms and against each other.
 
@@ -216,6 +268,7 @@ def check_results(scene: cs.Scene, results: dict) -> tuple[Check, ...]:
                     basis=bar.source,
                 )
             )
+    checks.extend(raster_checks(scene, results))
     names = list(results)
     for i in range(len(names)):
         for j in range(i + 1, len(names)):

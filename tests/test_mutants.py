@@ -118,3 +118,47 @@ def test_paraboloid_of_half_the_radius_fails_the_jkr_pulloff(monkeypatch):
     bad = _checks(sc, {"bem_griffith": _griffith(sc, 16)})[("bem_griffith", "pulloff_force")]
     assert bad.value / ok.value == pytest.approx(0.5, abs=0.05)
     assert not bad.passed
+
+
+def _mutated_module(monkeypatch, path: str, package: str, old: str, new: str) -> dict:
+    """The namespace of ``path`` executed with ``old`` replaced by ``new`` (the mutation study's
+    text substitution, in memory), registered as a module while the test runs."""
+    import sys
+    import types
+    from pathlib import Path
+
+    import contact_scene
+
+    src = (Path(contact_scene.__file__).parents[1] / path).read_text()
+    assert src.count(old) == 1
+    mod = types.ModuleType(f"{package}._mutant")
+    mod.__package__ = package
+    monkeypatch.setitem(sys.modules, mod.__name__, mod)
+    exec(compile(src.replace(old, new), path, "exec"), mod.__dict__)
+    return mod.__dict__
+
+
+@pytest.mark.parametrize("scene", ["kendall_circle", "triangle"])
+def test_raster_shifted_by_half_a_cell_fails_the_raster_checks(monkeypatch, scene):
+    """Mutant R1: cell centres at the nodes (corners taken for centres).  The face is still a
+    staircase of the right area, so the forces move within the Griffith BEM's bar (the circle's
+    pull-off by -2.9 % at 32 per radius, 0.7 % from Kendall); but the raster is no longer
+    equivariant under a quarter turn, which is exact for the correct rule.
+    Caught by: the raster checks of every grid result (crossval.compare.raster_checks)."""
+    sc = SUITE[scene]
+    r = _griffith(sc, 16)
+    exact = [c for c in check_results(sc, {"bem_griffith": r}) if c.kind == "exact"]
+    assert {c.quantity for c in exact} == {"raster mirror", "raster rotation 90"}
+    assert all(c.passed for c in exact)
+    ns = _mutated_module(
+        monkeypatch,
+        "contact_scene/raster.py",
+        "contact_scene",
+        "x = cx + (i0 + 0.5 + np.arange(nx)) * spacing",
+        "x = cx + (i0 + np.arange(nx)) * spacing",
+    )
+    monkeypatch.setattr(cs, "rasterise", ns["rasterise"])
+    failed = [c.quantity for c in check_results(sc, {"bem_griffith": r}) if c.kind == "exact" and not c.passed]
+    # centres on whole multiples of h in x and half multiples in y: the mirror x -> -x still maps
+    # the centres onto themselves, the quarter turn (x <-> y) does not
+    assert "raster rotation 90" in failed
