@@ -1,9 +1,12 @@
 """The built-in scenes: one TOML file per name in ``crossval/scenes/``, shipped with the package.
 
 ``SUITE`` is the set every method is checked on (the report, ``regress`` and the pytest
-plugin's reference scenes); it is dimensionless (E* = 1, w = 1, unit size) except the Kendall
-circle, which is compressible (nu = 0.3) so that E and E* differ.  The ``paper_*`` scenes are the
-paper's fitted experiments in SI units (Figs. 13-15), shipped as examples but not in the suite.
+plugin's reference scenes); it is dimensionless (E* = 1, w = 1, unit size) except where a scene
+exists to catch a scaling: the Kendall circle is compressible (nu = 0.3) so that E and E* differ,
+the incompressible circle has radius 2 and w = 1/2, the k = 0.25 graded circle radius 1/2 and
+c0 = 2, so that a length, an adhesion energy or a reference depth left out of a formula shows.
+The ``paper_*`` scenes are the paper's fitted experiments in SI units (Figs. 13-15), shipped as
+examples but not in the suite.
 A scene's name is its file's stem, so a name means one scene wherever it appears.
 """
 
