@@ -26,7 +26,7 @@ def _placed_at_random(layout: str) -> bool:
 
 @dataclass(frozen=True)
 class Brush(Union):
-    """Circular pillars of radius ``pillar_radius`` inside a square of side ``side`` (Fig. 8).
+    """Circular pillars inside a square face (Fig. 8): the adhering part is the pillars.
 
     ``layout = "regular"`` puts them on a square lattice of pitch ``pitch``; ``"random"``
     places ``count`` non-overlapping pillars uniformly at random (reproducible by ``seed``);
@@ -34,6 +34,28 @@ class Brush(Union):
     sized uniformly between half and all of ``pillar_radius`` (a square column of "radius" r
     has side r sqrt(pi), the area of the disc), as in the paper's mixed brushes (Fig. 8a).
     The nominal area is the square's, so area / nominal_area is the phi of Eq. 24.
+
+    Parameters
+    ----------
+    side : float, optional
+        Side of the square, > 0; 1 by default.
+    pillar_radius : float, optional
+        Radius of the pillars (the largest, for ``"mixed"``), 0 < r <= side/2; 0.05 by default.
+    layout : {"regular", "random", "mixed"}, optional
+        How the pillars are placed; ``"regular"`` by default.
+    pitch : float, optional
+        Distance between neighbouring pillars of the regular lattice, > 2 pillar_radius; 0.2 by
+        default.
+    count : int, optional
+        Number of pillars of a random or mixed layout, 1 <= count <= 100000.
+    seed : int, optional
+        Seed of the random placement, >= 0.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming the parameter (``indenter.pitch`` etc.) and its allowed range, or
+        ``indenter.count`` when that many pillars do not fit.
     """
 
     parts: tuple = field(default=(), init=False, repr=False)
@@ -85,5 +107,6 @@ class Brush(Union):
 
     @property
     def bounds(self):
+        """The square's box, (-side/2, -side/2, side/2, side/2)."""
         half_side = self.side / 2
         return (-half_side, -half_side, half_side, half_side)

@@ -43,8 +43,21 @@ def _weighted_centroid(areas, centroids) -> tuple[float, float]:
 
 @dataclass(frozen=True)
 class Union(Shape):
-    """Union of shapes.  The area is exact when the parts' bounding boxes are disjoint,
-    otherwise a quadrature on a 2048-cell raster (``area_is_exact`` says which)."""
+    """The union of shapes.
+
+    The area is exact when the parts' bounding boxes are disjoint, otherwise a quadrature on a
+    2048-cell raster (``area_is_exact`` says which).
+
+    Parameters
+    ----------
+    parts : tuple of Shape
+        The shapes joined, at least one.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming ``indenter.parts``, for no parts or a part that is not a shape.
+    """
 
     parts: tuple = ()
     kind = "union"
@@ -101,8 +114,25 @@ def _interior(shape: Shape, x, y):
 
 @dataclass(frozen=True)
 class Difference(Shape):
-    """``base`` with ``cuts`` removed.  The area is exact when every cut is a convex polygon or
-    circle inside a convex base and the cuts' bounding boxes are disjoint."""
+    """A face with cuts: ``base`` with the interiors of ``cuts`` removed.
+
+    The area is exact when every cut is a convex polygon or circle inside a convex base and the
+    cuts' bounding boxes are disjoint.  The cuts remove their interiors only, so their
+    boundaries stay part of the face.
+
+    Parameters
+    ----------
+    base : Shape
+        The uncut face; its area is the nominal area (phi of Eq. 24 = area / nominal area).
+    cuts : tuple of Shape, optional
+        The shapes cut out.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming ``indenter.base`` (no base shape) or ``indenter.cuts`` (cuts that remove the
+        whole face).
+    """
 
     # None only as the marker of a missing base, which _complete turns into a SceneError naming the field
     base: Shape = None  # type: ignore[assignment]
@@ -161,7 +191,24 @@ class Difference(Shape):
 
 @dataclass(frozen=True)
 class TwoCircles(Union):
-    """Two circles of radii r1, r2 whose centres are ``distance`` apart (Fig. 15); exact lens area."""
+    """Two circles whose centres are ``distance`` apart (Fig. 15), with the exact lens area.
+
+    The centres lie on the x axis at -distance/2 and +distance/2; the circles may overlap.
+
+    Parameters
+    ----------
+    radius1 : float, optional
+        Radius of the left circle, > 0; 1 by default.
+    radius2 : float, optional
+        Radius of the right circle, > 0; 1 by default.
+    distance : float, optional
+        Distance between the centres, >= 0; 2 by default.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming the parameter (``indenter.radius1`` etc.) and its allowed range.
+    """
 
     # built from the radii, not passed: TwoCircles(r1, r2, distance) must not bind r1 to ``parts``
     parts: tuple = field(default=(), init=False, repr=False)

@@ -15,6 +15,22 @@ __all__ = ["Circle", "Ellipse"]
 
 @dataclass(frozen=True)
 class Circle(Shape):
+    """A circular face: Kendall's flat punch.
+
+    Parameters
+    ----------
+    radius : float
+        Radius a, > 0.
+    center : tuple of float, optional
+        (x, y) of the centre; the origin by default.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming the parameter as a scene file spells it (``indenter.<name>``) and its allowed
+        range, for a value out of that range.
+    """
+
     radius: float = real(gt=0)
     center: tuple[float, float] = point()
     kind = "circle"
@@ -24,6 +40,18 @@ class Circle(Shape):
         return np.hypot(x - self.center[0], y - self.center[1]) <= self.radius * (1 + BOUNDARY_REL_TOL)
 
     def signed_distance(self, x, y):
+        """Signed distance to the circle (negative inside).
+
+        Parameters
+        ----------
+        x, y : float or array_like
+            Coordinates of the points (broadcast together).
+
+        Returns
+        -------
+        numpy.ndarray
+            abs(r - centre) - radius at each point.
+        """
         return np.hypot(np.asarray(x) - self.center[0], np.asarray(y) - self.center[1]) - self.radius
 
     @property
@@ -49,6 +77,26 @@ class Circle(Shape):
 
 @dataclass(frozen=True)
 class Ellipse(Shape):
+    """An elliptical face (Galin's punch, :func:`contact_scene.theory.elliptical_punch_stiffness`).
+
+    Parameters
+    ----------
+    semi_major : float
+        Semi-major axis a, > 0.
+    semi_minor : float
+        Semi-minor axis b, 0 < b <= a.
+    rotation_deg : float, optional
+        Counter-clockwise angle of the major axis from the x axis, in degrees; 0 by default.
+    center : tuple of float, optional
+        (x, y) of the centre; the origin by default.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming the parameter as a scene file spells it (``indenter.<name>``) and its allowed
+        range, for a value out of that range.
+    """
+
     semi_major: float = real(gt=0)
     semi_minor: float = real(gt=0, le=lambda ellipse: ellipse.semi_major)
     rotation_deg: float = real(0.0)
@@ -69,6 +117,7 @@ class Ellipse(Shape):
 
     @property
     def eccentricity(self) -> float:
+        """e = sqrt(1 - b^2/a^2)."""
         return math.sqrt(1 - (self.semi_minor / self.semi_major) ** 2)
 
     @property

@@ -15,9 +15,33 @@ __all__ = ["SquareWithFaults"]
 
 @dataclass(frozen=True)
 class SquareWithFaults(Difference):
-    """A square face with the faults of Fig. 7: an optional V-shaped notch cut into the middle
-    of the top edge, and ``line_cuts`` straight cuts of width ``cut_width`` running from the
-    left edge inward by ``line_cut_length`` at evenly spaced heights."""
+    """A square face with the faults of Fig. 7: a V notch and line cuts.
+
+    An optional V-shaped notch is cut into the middle of the top edge, and ``line_cuts`` straight
+    cuts of width ``cut_width`` run from the left edge inward by ``line_cut_length`` at evenly
+    spaced heights.  The nominal area is the square's.
+
+    Parameters
+    ----------
+    side : float, optional
+        Side of the square, > 0; 1 by default.
+    v_cut_depth : float, optional
+        Depth of the V notch, 0 <= depth < side (0: no notch).
+    v_cut_width : float, optional
+        Width of the notch at the edge, 0 <= width <= side; > 0 exactly when the depth is.
+    line_cuts : int, optional
+        Number of line cuts, 0 <= n <= 1000.
+    line_cut_length : float, optional
+        How far the line cuts run in from the left edge, 0 <= length < side; > 0 with cuts.
+    cut_width : float, optional
+        Width of each line cut, 0 <= width <= side / (2 line_cuts + 1); > 0 with cuts.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming the parameter (``indenter.v_cut_width`` etc.) and its allowed range, or the rule
+        it breaks.
+    """
 
     base: Shape = field(default=None, init=False, repr=False)  # type: ignore[assignment]  # built by _complete
     cuts: tuple = field(default=(), init=False, repr=False)

@@ -20,9 +20,28 @@ _LUMA = np.array([0.299, 0.587, 0.114])
 
 @dataclass(frozen=True)
 class ImageMask(Shape):
-    """A face read from an image: pixels darker than ``threshold`` (0..1) belong to the face
-    (``invert`` flips that).  Pixel (row 0, col 0) is the top-left corner; the image is
-    centred on the origin, x to the right, y up."""
+    """A face read from an image: pixels darker than ``threshold`` belong to the face.
+
+    Pixel (row 0, col 0) is the top-left corner; the image is centred on the origin, x to the
+    right, y up.  Colour images are converted to grey by the ITU-R BT.601 luma weights.
+
+    Parameters
+    ----------
+    path : str
+        The image file (any format matplotlib reads).
+    pixel_size : float, optional
+        Side of one pixel in the scene's length unit, > 0; 1 by default.
+    threshold : float, optional
+        Grey level (0 black .. 1 white) below which a pixel belongs to the face; 0.5 by default.
+    invert : bool, optional
+        Light pixels belong to the face instead.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming ``indenter.path`` for an unreadable image or one without face pixels, or the
+        parameter out of its range.
+    """
 
     path: str = ""
     pixel_size: float = real(1.0, gt=0)

@@ -120,6 +120,7 @@ class PolygonalShape(Shape):
 
     @cached_property
     def is_convex(self) -> bool:
+        """Whether the polygon is convex (no inward turn at any corner, to round-off)."""
         v = self._verts
         edges = np.roll(v, -1, axis=0) - v
         turn = edges[:, 0] * np.roll(edges[:, 1], -1) - edges[:, 1] * np.roll(edges[:, 0], -1)
@@ -158,7 +159,18 @@ class PolygonalShape(Shape):
         return out.reshape(shape)
 
     def signed_distance(self, x, y):
-        """Exact signed distance to the boundary (negative inside)."""
+        """Exact signed distance to the boundary (negative inside).
+
+        Parameters
+        ----------
+        x, y : float or array_like
+            Coordinates of the points (broadcast together).
+
+        Returns
+        -------
+        numpy.ndarray
+            The distance to the nearest edge, negative for points inside, of the broadcast shape.
+        """
         x = np.asarray(x, float)
         y = np.asarray(y, float)
         v = self._verts
@@ -214,6 +226,21 @@ class PolygonalShape(Shape):
 
 @dataclass(frozen=True)
 class Polygon(PolygonalShape):
+    """A simple polygon: any face bounded by straight edges.
+
+    Parameters
+    ----------
+    vertices : sequence of (float, float)
+        At least 3 (x, y) corners in order, either orientation (stored counter-clockwise); the
+        edges must not cross and the area must not be zero.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming ``indenter.vertices``: fewer than 3 vertices, non-numbers, a self-intersecting
+        or empty polygon.
+    """
+
     vertices: tuple = ()
     kind = "polygon"
 
@@ -228,6 +255,26 @@ class Polygon(PolygonalShape):
 
 @dataclass(frozen=True)
 class Rectangle(PolygonalShape):
+    """A rectangular face.
+
+    Parameters
+    ----------
+    width : float
+        Side along x before rotation, > 0.
+    height : float
+        Side along y before rotation, > 0.
+    rotation_deg : float, optional
+        Counter-clockwise rotation about the centre, in degrees; 0 by default.
+    center : tuple of float, optional
+        (x, y) of the centre; the origin by default.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming the parameter as a scene file spells it (``indenter.<name>``) and its allowed
+        range, for a value out of that range.
+    """
+
     width: float = real(gt=0)
     height: float = real(gt=0)
     rotation_deg: float = real(0.0)
@@ -241,6 +288,7 @@ class Rectangle(PolygonalShape):
 
     @property
     def aspect_ratio(self) -> float:
+        """The longer side over the shorter, >= 1."""
         return max(self.width, self.height) / min(self.width, self.height)
 
     @property
@@ -256,6 +304,24 @@ class Rectangle(PolygonalShape):
 
 @dataclass(frozen=True)
 class Square(PolygonalShape):
+    """A square face (the paper's square punch; stiffness factor beta = 1.021, Eq. 9).
+
+    Parameters
+    ----------
+    side : float
+        Side length, > 0.
+    rotation_deg : float, optional
+        Counter-clockwise rotation about the centre, in degrees; 0 by default.
+    center : tuple of float, optional
+        (x, y) of the centre; the origin by default.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming the parameter as a scene file spells it (``indenter.<name>``) and its allowed
+        range, for a value out of that range.
+    """
+
     side: float = real(gt=0)
     rotation_deg: float = real(0.0)
     center: tuple[float, float] = point()
@@ -279,7 +345,18 @@ class Square(PolygonalShape):
 
 @dataclass(frozen=True)
 class Triangle(PolygonalShape):
-    """A triangle from three vertices; ``Triangle.equilateral(side)`` for the paper's punch."""
+    """A triangle from three vertices; ``Triangle.equilateral(side)`` for the paper's punch.
+
+    Parameters
+    ----------
+    vertices : sequence of (float, float)
+        Exactly 3 (x, y) corners, not collinear.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming ``indenter.vertices``: not 3 vertices, non-numbers or a degenerate triangle.
+    """
 
     vertices: tuple = ()
     kind = "triangle"
@@ -292,6 +369,27 @@ class Triangle(PolygonalShape):
 
     @classmethod
     def equilateral(cls, side: float, rotation_deg: float = 0.0, center=(0.0, 0.0)) -> Triangle:
+        """The equilateral triangle of side ``side``, one corner pointing up (before rotation).
+
+        Parameters
+        ----------
+        side : float
+            Side length, > 0.
+        rotation_deg : float, optional
+            Counter-clockwise rotation about the centre, in degrees; 0 by default.
+        center : tuple of float, optional
+            (x, y) of the centroid; the origin by default.
+
+        Returns
+        -------
+        Triangle
+            The triangle.
+
+        Raises
+        ------
+        contact_scene.SceneError
+            Naming ``indenter.side``, for a side that is not > 0.
+        """
         side = check_real("indenter.side", side, lo=0, lo_open=True)
         circumradius = side / math.sqrt(3)
         t = np.radians(90 + np.array([0, 120, 240]))
@@ -301,6 +399,26 @@ class Triangle(PolygonalShape):
 
 @dataclass(frozen=True)
 class RegularPolygon(PolygonalShape):
+    """A regular polygon with ``n_sides`` corners on a circle.
+
+    Parameters
+    ----------
+    n_sides : int
+        Number of corners, 3 <= n <= 100000.
+    circumradius : float
+        Radius of the circle through the corners, > 0.
+    rotation_deg : float, optional
+        Counter-clockwise rotation about the centre, in degrees (0: a corner on the +x axis).
+    center : tuple of float, optional
+        (x, y) of the centre; the origin by default.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming the parameter as a scene file spells it (``indenter.<name>``) and its allowed
+        range, for a value out of that range.
+    """
+
     n_sides: int = whole(ge=3, le=100_000)
     circumradius: float = real(gt=0)
     rotation_deg: float = real(0.0)

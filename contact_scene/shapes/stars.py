@@ -15,7 +15,30 @@ __all__ = ["Star", "PowerLawStar"]
 
 @dataclass(frozen=True)
 class Star(PolygonalShape):
-    """n rays: vertices alternate between the outer radius (tips) and the inner radius."""
+    """An n-ray star (the paper's star punch, Fig. 14).
+
+    The vertices alternate between the outer radius (the tips) and the inner radius; a tip
+    points along +y before rotation.
+
+    Parameters
+    ----------
+    n_rays : int
+        Number of rays, 2 <= n <= 10000.
+    outer_radius : float
+        Radius of the tips, > 0.
+    inner_radius : float
+        Radius of the notches between the rays, 0 < r <= outer_radius.
+    rotation_deg : float, optional
+        Counter-clockwise rotation about the centre, in degrees; 0 by default.
+    center : tuple of float, optional
+        (x, y) of the centre; the origin by default.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming the parameter as a scene file spells it (``indenter.<name>``) and its allowed
+        range, for a value out of that range.
+    """
 
     n_rays: int = whole(ge=2, le=10_000)
     outer_radius: float = real(gt=0)
@@ -38,11 +61,32 @@ class Star(PolygonalShape):
 
 @dataclass(frozen=True)
 class PowerLawStar(PolygonalShape):
-    """A star whose rays are cut so that the ring filling factor is phi(r) = (r0/r)^3 for
-    r0 <= r <= R (Eq. 29 of the sheet: constant adhesion force over that range).
+    """A star whose rays are cut to the ring filling factor phi(r) = (r0/r)^3 (Eq. 29).
 
-    For r < r0 the face is the full disc of radius ``core_radius``.  The curved ray flanks
-    are polygons with ``samples`` vertices each; area and phi are those of the polygon.
+    For r0 <= r <= R the filling factor makes the adhesion force of Eq. 28 independent of the
+    radius.  For r < r0 the face is the full disc of radius ``core_radius``.  The curved ray
+    flanks are polygons with ``samples`` vertices each; area and phi are those of the polygon.
+
+    Parameters
+    ----------
+    n_rays : int
+        Number of rays, 2 <= n <= 1000.
+    core_radius : float
+        r0, the radius of the full core, > 0.
+    outer_radius : float
+        R, the radius of the ray tips, > core_radius.
+    samples : int, optional
+        Vertices per ray flank, 4 <= samples <= 10000; 64 by default.
+    rotation_deg : float, optional
+        Counter-clockwise rotation about the centre, in degrees; 0 by default.
+    center : tuple of float, optional
+        (x, y) of the centre; the origin by default.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming the parameter as a scene file spells it (``indenter.<name>``) and its allowed
+        range, for a value out of that range.
     """
 
     n_rays: int = whole(ge=2, le=1000)
@@ -54,7 +98,18 @@ class PowerLawStar(PolygonalShape):
     kind = "power_law_star"
 
     def design_filling(self, r):
-        """The phi(r) the rays are designed for."""
+        """The filling factor phi(r) the rays are designed for: 1 in the core, (r0/r)^3 outside.
+
+        Parameters
+        ----------
+        r : float or array_like
+            Radii, >= 0.
+
+        Returns
+        -------
+        numpy.ndarray
+            phi at each radius, in (0, 1].
+        """
         r = np.asarray(r, float)
         return np.where(r <= self.core_radius, 1.0, (self.core_radius / np.maximum(r, 1e-300)) ** 3)
 

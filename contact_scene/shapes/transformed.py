@@ -16,8 +16,29 @@ __all__ = ["Transformed"]
 
 @dataclass(frozen=True)
 class Transformed(Shape):
-    """A shape rotated (counter-clockwise, degrees), mirrored (x -> -x, before rotating) and
-    scaled about the point ``about``."""
+    """A shape rotated, mirrored and scaled about a point, without rebuilding it.
+
+    The point x maps to about + s R(theta) M (x - about), with M the mirror x -> -x (when
+    ``mirror``), R the counter-clockwise rotation and s the scale.
+
+    Parameters
+    ----------
+    shape : Shape
+        The original shape.
+    rotation_deg : float, optional
+        Counter-clockwise rotation in degrees; 0 by default.
+    mirror : bool, optional
+        Reflect x -> -x (before rotating).
+    scale : float, optional
+        Scale factor, > 0; 1 by default.
+    about : tuple of float, optional
+        (x, y) of the fixed point; the origin by default.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming ``scale``, for a scale that is not > 0.
+    """
 
     shape: Shape
     rotation_deg: float = 0.0
