@@ -75,7 +75,7 @@ class ErrorReference:
 
     value: float
     name: str
-    #: "closed form" | "bounded" (one result with a bounded error) | "extrapolated" | "none"
+    #: "closed form", "bounded" (one result with a bounded error), "extrapolated" or "none"
     kind: str
     #: relative error bar of the reference itself (0 for a closed form)
     uncertainty: float = 0.0
