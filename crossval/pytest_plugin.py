@@ -13,7 +13,16 @@ import pytest
 
 @pytest.fixture(scope="session")
 def adhesion_reference():
-    """A function ``(scene_or_name, resolution=64) -> crossval.reference.Reference``, cached per session."""
+    """Session fixture: reference results by scene or name, each computed once per session.
+
+    Returns
+    -------
+    callable
+        ``get(scene_or_name, *, resolution=64)`` -> :class:`crossval.Reference`, as
+        :func:`crossval.reference` computes it (a built-in scene's name, a scene file's path or a
+        :class:`contact_scene.Scene`; elements per radius of the Griffith BEM where the FEM does
+        not apply); a name, or the same Scene object, at one resolution is solved once per session.
+    """
     from .reference import reference
 
     cache = {}
