@@ -66,6 +66,11 @@ class Method:
     #: whether the method models a finite interaction range (``adhesion.range``, ``--range``);
     #: the others are zero-range (Griffith) methods and would silently ignore it
     uses_range: bool = False
+    #: the half-space discretisation of its single-grid solves (``halfspace``: "love" for Love's
+    #: uniform-pressure squares, "collocation" for point-collocated Boussinesq coefficients), so
+    #: that two methods' stiffnesses on one grid are held to their kernels' measured difference;
+    #: None for a method without a grid
+    grid_kernel: str | None = None
 
     def resolution_meaning(self, scene: Scene) -> str:
         """What ``resolution`` (``--resolution``) means for this method on this scene."""
@@ -203,6 +208,7 @@ METHODS: dict[str, Method] = {
         # 32 per radius costs about twice 16 on the suite and halves the bars
         Sweeps(study=(8, 12, 16, 24, 32), quick=(16, 24, 32), full=(16, 24, 32, 48, 64), regression=16),
         reference_kind="sequence",
+        grid_kernel="love",
     ),
     "bem_energy": Method(
         "bem_energy",
@@ -213,6 +219,7 @@ METHODS: dict[str, Method] = {
         # zero-range limit: elements per process zone (1.0: the coarse sequence)
         Sweeps(study=(1.0, 2.0, 3.0), quick=(1.0,), full=(1.0, 2.0), regression=1.0, compare_quick=1.0),
         uses_range=True,
+        grid_kernel="collocation",  # EnergySettings.kernel's default
     ),
     "fem_reference": Method(
         "fem_reference",

@@ -20,10 +20,20 @@ ROOT = Path(__file__).resolve().parents[1]
 def test_compare_circle_runs_all_three_methods_and_passes():
     sc = crossval.SUITE["incompressible_circle"]
     cmp = crossval.compare(sc, resolution=16, resolutions={"bem_energy": 1.0})
-    assert set(cmp.results) == {"bem_griffith", "bem_energy", "fem_reference"}
+    partner = "bem_energy on bem_griffith's grid (w = 0)"
+    assert set(cmp.results) == {"bem_griffith", "bem_energy", "fem_reference", partner}
     assert cmp.passed, [c.explain() for c in cmp.checks if not c.passed]
     for pair in ("bem_griffith vs fem_reference", "bem_griffith vs bem_energy", "bem_energy vs fem_reference"):
         assert any(c.method == pair and c.quantity == "pulloff_force" for c in cmp.checks), pair
+    # the zero-range energy result is extrapolated over grids: the energy BEM also runs on the
+    # Griffith BEM's grid without adhesion, and the pair is held to the kernels' window
+    bare = cmp.results[partner]
+    assert bare.grid_spacing == cmp.results["bem_griffith"].grid_spacing and bare.pulloff_force == 0
+    (same,) = [c for c in cmp.checks if c.method == f"bem_griffith vs {partner}"]
+    assert same.kind == "bounds" and same.reference < same.value < same.upper
+    # only methods asked for become partners
+    alone = crossval.compare(sc, methods=["bem_griffith"], resolution=16)
+    assert set(alone.results) == {"bem_griffith"}
     # the zero-range energy result ignores the grid resolution meant for the Griffith solver
     assert "zero_range" in cmp.results["bem_energy"].info
 
