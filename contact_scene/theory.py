@@ -719,7 +719,7 @@ def graded_green_coefficient(*, E0: float, c0: float, k: float) -> float:
     Returns
     -------
     float
-        A_k, in m^(1+k) of displacement per N of point force.
+        A_k (m^(2+k)/N: w in m for P in N and r in m).
 
     References
     ----------
@@ -1102,8 +1102,8 @@ def jkr_force(*, E_star: float, work: float, sphere_radius: float, contact_radiu
 
     Returns
     -------
-    numpy.ndarray
-        F (N), the shape of ``contact_radius`` (0-d for a float); negative is tensile.
+    float or numpy.ndarray
+        F (N), of the shape of ``contact_radius``; negative is tensile.
 
     References
     ----------
@@ -1130,8 +1130,8 @@ def jkr_approach(*, E_star: float, work: float, sphere_radius: float, contact_ra
 
     Returns
     -------
-    numpy.ndarray
-        d (m), the shape of ``contact_radius`` (0-d for a float).
+    float or numpy.ndarray
+        d (m), of the shape of ``contact_radius``.
 
     References
     ----------

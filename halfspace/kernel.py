@@ -45,8 +45,8 @@ def love_square_integral(x, y, half_width: float):
 
     Returns
     -------
-    numpy.ndarray
-        The integral at each field point (length units).
+    float or numpy.ndarray
+        The integral at each field point (length units), of the broadcast shape of x and y.
 
     References
     ----------
@@ -212,8 +212,8 @@ def graded_square_integral(x, y, half_width: float, k: float):
 
     Returns
     -------
-    numpy.ndarray
-        The integral at each field point.
+    float or numpy.ndarray
+        The integral at each field point, of the broadcast shape of x and y.
 
     Raises
     ------
