@@ -31,7 +31,7 @@ import time
 from datetime import UTC, datetime
 from pathlib import Path
 
-import _timing  # noqa: F401  (thread settings)
+import _timing  # thread settings first
 from _timing import table
 
 import bem_energy as be
