@@ -29,10 +29,16 @@ def model() -> dict:
 
 
 def error_bars(
-    scene: Scene, *, spacing: float, face_area: float, zero_range_estimate: float | None = None
+    scene: Scene,
+    *,
+    spacing: float,
+    face_area: float,
+    zero_range_estimate: float | None = None,
+    zero_range_bracket: tuple[float, float] | None = None,
 ) -> dict[str, ErrorBar]:
     """The bars of a solve of ``scene`` whose (finest) grid has element side ``spacing`` and face
-    area ``face_area``; ``zero_range_estimate``: the zero-range limit's relative error estimate."""
+    area ``face_area``; ``zero_range_estimate``: the zero-range limit's relative error estimate;
+    ``zero_range_bracket``: the two limits its finest step allows (the bar's ``interval``)."""
     shape = scene.indenter.shape
     bars: dict[str, ErrorBar] = {}
     if not scene.indenter.profile.is_flat:
@@ -49,5 +55,7 @@ def error_bars(
         bars["pulloff_force"] = ErrorBar(
             zero_range_estimate,
             "the zero-range extrapolation's estimate (bounds every window of tests/data/zero_range_study.json)",
+            # the limits the finest step allows (bem_energy.tail_bracket): the limit lies between them
+            interval=None if zero_range_bracket is None else (min(zero_range_bracket), max(zero_range_bracket)),
         )
     return bars

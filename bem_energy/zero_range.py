@@ -348,5 +348,6 @@ def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callb
             spacing=finest.grid_spacing,
             face_area=finest.face_area,
             zero_range_estimate=float(est / F0) if ok and math.isfinite(est) and F0 > 0 else None,
+            zero_range_bracket=tail_bracket(lcs, Fs) if ok and math.isfinite(est) and F0 > 0 else None,
         ),
     )

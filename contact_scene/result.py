@@ -118,11 +118,16 @@ class ErrorBar:
     role
         ``"validation"``: the quantity is an independent prediction; ``"calibration"``: the
         method was fitted to this quantity on this very scene, so matching it validates nothing.
+    interval
+        Where the method also brackets the exact value itself, ``(low, high)`` in the quantity's
+        units (the energy BEM's zero-range limit: the two limits its last step allows); the
+        exact value lies inside it, which is a sharper claim on one side than ``relative``.
     """
 
     relative: float
     source: str
     role: str = "validation"
+    interval: tuple[float, float] | None = None
 
     def __post_init__(self):
         if not (isinstance(self.relative, (int, float)) and math.isfinite(self.relative) and self.relative >= 0):
@@ -130,6 +135,11 @@ class ErrorBar:
         if self.role not in ("validation", "calibration"):
             raise ValueError(f"ErrorBar.role must be 'validation' or 'calibration' (got {self.role!r})")
         object.__setattr__(self, "relative", float(self.relative))
+        if self.interval is not None:
+            low, high = (float(x) for x in self.interval)
+            if not (math.isfinite(low) and math.isfinite(high) and low <= high):
+                raise ValueError(f"ErrorBar.interval must be finite (low, high), low <= high (got {self.interval!r})")
+            object.__setattr__(self, "interval", (low, high))
 
 
 @dataclass(frozen=True, eq=False)

@@ -297,6 +297,23 @@ def check_results(scene: cs.Scene, results: dict) -> tuple[Check, ...]:
             )
         for q in ("pulloff_force", "pulloff_approach", "stiffness"):
             bar = error_bar(r, q)
+            if q in theory and bar is not None and bar.interval is not None:
+                # the method brackets the exact value: the closed form must lie inside
+                checks.append(
+                    Check(
+                        name,
+                        f"{q} bracket",
+                        theory[q],
+                        bar.interval[0],
+                        f"its bracket on the exact {q}; the value checked is {src}'s",
+                        0.0,
+                        kind="bounds",
+                        upper=bar.interval[1],
+                        role=bar.role,
+                        converged=r.converged,
+                        basis=bar.source,
+                    )
+                )
             if q in theory and bar is not None:
                 checks.append(
                     Check(
@@ -357,6 +374,25 @@ def check_results(scene: cs.Scene, results: dict) -> tuple[Check, ...]:
                         )
                     )
                     continue
+                for bx, nx, y, by, ny in ((ba, names[i], b, bb, names[j]), (bb, names[j], a, ba, names[i])):
+                    if bx.interval is None:
+                        continue
+                    # the other method's value, within its own bar, must reach into the bracket
+                    checks.append(
+                        Check(
+                            f"{ny} vs {nx}",
+                            f"{q} bracket",
+                            getattr(y, q),
+                            bx.interval[0],
+                            f"{nx}'s bracket on the exact {q}, widened by {ny}'s bar",
+                            by.relative,
+                            kind="bounds",
+                            upper=bx.interval[1] * (1 + by.relative),
+                            role=role,
+                            converged=a.converged and b.converged,
+                            basis=f"{bx.source}; {by.source}",
+                        )
+                    )
                 tol = math.hypot(ba.relative, bb.relative)
                 basis = "the two error bars in quadrature"
                 checks.append(

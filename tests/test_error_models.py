@@ -65,7 +65,7 @@ def test_a_wrong_modulus_fails_the_stiffness_check(monkeypatch):
     the old worst-case tolerance (0.15/N + sqrt(2)/N = 9.8 %) let it pass."""
     sc = _circle(E=1.0, nu=0.3)
     st = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=16))
-    ok = {c.quantity: c for c in check_results(sc, {"bem_griffith": bg.solve(sc, st)})}
+    ok = {c.quantity: c for c in check_results(sc, {"bem_griffith": bg.solve(sc, st)}) if c.kind == "relative"}
     assert all(c.passed for c in ok.values()) and set(ok) == {"pulloff_force", "pulloff_approach", "stiffness"}
     monkeypatch.setattr(cs.Homogeneous, "effective_modulus", property(lambda m: m.youngs_modulus))
     bad = bg.solve(sc, st)

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 
 import bem_griffith as bg
@@ -162,3 +163,34 @@ def test_raster_shifted_by_half_a_cell_fails_the_raster_checks(monkeypatch, scen
     # centres on whole multiples of h in x and half multiples in y: the mirror x -> -x still maps
     # the centres onto themselves, the quarter turn (x <-> y) does not
     assert "raster rotation 90" in failed
+
+
+def test_a_rate_bracket_without_the_smooth_edge_fails_kendalls_bracket():
+    """Mutant Z1: the zero-range tail's rate bracket (1, 1.5) instead of (0.5, 1.5), i.e.
+    without the sqrt(l_c) tail of a smooth edge.  The estimate (the larger distance from F0 to
+    the two limits) hardly changes, because the fitted F0 lies beyond both; but the limits
+    the finest step then allows exclude Kendall's force, which the correct bracket contains.
+    Caught by: the check that the closed form lies in the energy BEM's bracket."""
+    import dataclasses
+
+    import bem_energy as be
+    from bem_energy.zero_range import tail_bracket
+
+    sc = SUITE["kendall_circle"]
+    r = be.solve_with_resolution(sc, 1.0)  # the quick report's coarse sequence
+    assert r.converged and r.error_bars["pulloff_force"].interval is not None
+    ok = {c.quantity: c for c in check_results(sc, {"bem_energy": r}) if c.method == "bem_energy"}
+    assert ok["pulloff_force bracket"].passed and ok["pulloff_force"].passed
+    seq = r.info["zero_range"]
+    lcs = np.array(seq["process_zone_ratios"]) * sc.indenter.shape.radius
+    bracket = tail_bracket(lcs, np.array(seq["pulloff_forces"]), rates=(1.0, 1.5))
+    est = max(abs(r.pulloff_force - b) for b in bracket) / r.pulloff_force
+    force = r.error_bars["pulloff_force"]
+    bars = {**r.error_bars, "pulloff_force": dataclasses.replace(force, relative=est, interval=tuple(sorted(bracket)))}
+    bad = {
+        c.quantity: c
+        for c in check_results(sc, {"bem_energy": dataclasses.replace(r, error_bars=bars)})
+        if c.method == "bem_energy"
+    }
+    assert bad["pulloff_force"].passed  # the symmetric bar alone does not see it
+    assert not bad["pulloff_force bracket"].passed
