@@ -237,6 +237,7 @@ def raster_checks(scene: cs.Scene, results: dict) -> list[Check]:
                     "the transformed raster",
                     0.0,
                     kind="exact",
+                    converged=r.converged,  # the rule: an unconverged result fails every check it enters
                     basis=f"cells at h = {h:.4g}, nodes anchored at the centroid (contact_scene.raster)",
                 )
             )
