@@ -1,7 +1,8 @@
 """The one error type a bad scene raises, and the checks that raise it.
 
 Every message names the offending field (dotted, as in the scene file) and the
-allowed range, so that the CLI can print it as is and exit with status 2.
+allowed range, so that the CLI can print it as is and exit with status 2.  Classes declare
+their fields' ranges with :mod:`contact_scene.validation`, which calls these checks.
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ __all__ = ["SceneError", "check_real", "check_int", "check_choice"]
 
 
 class SceneError(ValueError):
-    """An invalid scene, scene file or discretisation setting.
+    """An invalid scene, scene file, discretisation or solver setting.
 
     ``field`` is the dotted name of the offending entry (``material.youngs_modulus``).
     """
@@ -65,6 +66,7 @@ def check_int(field: str, value, *, lo=None, hi=None) -> int:
 
 
 def check_choice(field: str, value, choices) -> str:
+    """Return ``value`` if it is one of the strings ``choices``, or raise SceneError listing them."""
     if not isinstance(value, str) or value not in choices:
         raise SceneError(field, f"must be one of {', '.join(map(repr, sorted(choices)))} (got {value!r})")
     return value

@@ -101,6 +101,9 @@ class SolverStats:
     unknowns: int = 0
 
     def __post_init__(self):
+        # not declared fields (contact_scene.validation): a bad count is a solver's bug, not bad
+        # input, so it raises a plain ValueError rather than the SceneError the CLI reports as
+        # a user's mistake
         for f in dataclasses.fields(self):
             v = getattr(self, f.name)
             if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 0:
@@ -130,6 +133,7 @@ class ErrorBar:
     interval: tuple[float, float] | None = None
 
     def __post_init__(self):
+        # a solver's error model builds this: a bad bar is a bug, not a user's input (see SolverStats)
         if not (isinstance(self.relative, (int, float)) and math.isfinite(self.relative) and self.relative >= 0):
             raise ValueError(f"ErrorBar.relative must be a finite number >= 0 (got {self.relative!r})")
         if self.role not in ("validation", "calibration"):
