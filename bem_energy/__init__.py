@@ -62,7 +62,7 @@ def solve(scene: Scene, settings: EnergySettings | ZeroRangeSettings | None = No
 
     References
     ----------
-    - V. Rey, G. Anciaux, J.-F. Molinari, "Normal adhesive contact on rough surfaces: efficient algorithm
+    - Rey, V., Anciaux, G., Molinari, J.-F., "Normal adhesive contact on rough surfaces: efficient algorithm
       for FFT-based BEM resolution", Comput. Mech. 60:69-81 (2017).
     """
     ad = scene.adhesion

@@ -128,7 +128,7 @@ def pull_off(
 
     References
     ----------
-    - V. Rey, G. Anciaux, J.-F. Molinari, "Normal adhesive contact on rough surfaces: efficient algorithm
+    - Rey, V., Anciaux, G., Molinari, J.-F., "Normal adhesive contact on rough surfaces: efficient algorithm
       for FFT-based BEM resolution", Comput. Mech. 60:69-81 (2017).
     """
     t0 = time.perf_counter()

@@ -83,9 +83,9 @@ def solve(scene: Scene, settings: GriffithSettings | None = None, *, callback=No
 
     References
     ----------
-    - R. Pohrt, V.L. Popov, "Adhesive contact simulation of elastic solids using local mesh-dependent
+    - Pohrt, R., Popov, V.L., "Adhesive contact simulation of elastic solids using local mesh-dependent
       detachment criterion in boundary elements method", Facta Universitatis, Mech. Eng. 13(1):3-10 (2015).
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     settings = settings or GriffithSettings()

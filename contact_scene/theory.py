@@ -83,8 +83,8 @@ def kendall_stiffness(*, E_star: float, radius: float) -> float:
 
     References
     ----------
-    - K. Kendall, "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Kendall, K., "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return 2.0 * E_star * radius
@@ -114,8 +114,8 @@ def kendall_energy(*, E_star: float, radius: float, approach: float, work: float
 
     References
     ----------
-    - K. Kendall, "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Kendall, K., "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return E_star * radius * approach**2 - math.pi * radius**2 * work
@@ -142,8 +142,8 @@ def critical_radius(*, E_star: float, approach: float, work: float) -> float:
 
     References
     ----------
-    - K. Kendall, "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Kendall, K., "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return E_star * approach**2 / (2.0 * math.pi * work)
@@ -170,8 +170,8 @@ def kendall_critical_approach(*, E_star: float, radius: float, work: float) -> f
 
     References
     ----------
-    - K. Kendall, "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Kendall, K., "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return -math.sqrt(2.0 * math.pi * radius * work / E_star)
@@ -200,8 +200,8 @@ def kendall_detachment_force(*, E_star: float, radius: float, work: float) -> fl
 
     References
     ----------
-    - K. Kendall, "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Kendall, K., "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return -math.sqrt(8.0 * math.pi * E_star * work * radius**3)
@@ -228,8 +228,8 @@ def kendall_adhesion_force(*, E_star: float, radius: float, work: float) -> floa
 
     References
     ----------
-    - K. Kendall, "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Kendall, K., "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return math.sqrt(8.0 * math.pi * E_star * work * radius**3)
@@ -254,8 +254,8 @@ def kendall_energies_at_detachment(*, radius: float, work: float) -> tuple[float
 
     References
     ----------
-    - K. Kendall, "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Kendall, K., "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return 2.0 * math.pi * radius**2 * work, math.pi * radius**2 * work
@@ -283,8 +283,8 @@ def flat_circle_energy_release_rate(*, force: float, E_star: float, radius: floa
 
     References
     ----------
-    - K. Kendall, "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Kendall, K., "The adhesion and surface energy of elastic solids", J. Phys. D 4:1186-1195 (1971).
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return force**2 / (8.0 * math.pi * E_star * radius**3)
@@ -320,7 +320,7 @@ def compact_shape_stiffness(*, E_star: float, area: float, beta: float = 1.0) ->
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return 2.0 * E_star * beta * math.sqrt(area / math.pi)
@@ -350,7 +350,7 @@ def upper_bound_force(*, E_star: float, work: float, area: float, filling_factor
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return math.sqrt(8.0 * math.pi * E_star * filling_factor * work * (area / math.pi) ** 1.5)
@@ -377,7 +377,7 @@ def upper_bound_approach(*, E_star: float, work: float, area: float, filling_fac
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return -math.sqrt(2.0 * math.pi * filling_factor * work * math.sqrt(area / math.pi) / E_star)
@@ -400,7 +400,7 @@ def holm_radius(*, stiffness: float, E_star: float) -> float:
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return stiffness / (2.0 * E_star)
@@ -427,7 +427,7 @@ def lower_bound_force(*, E_star: float, work: float, incircle_radius: float) -> 
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return kendall_adhesion_force(E_star=E_star, radius=incircle_radius, work=work)
@@ -452,7 +452,7 @@ def lower_bound_approach(*, E_star: float, work: float, incircle_radius: float) 
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return kendall_critical_approach(E_star=E_star, radius=incircle_radius, work=work)
@@ -477,9 +477,9 @@ def element_energy_constant() -> float:
 
     References
     ----------
-    - R. Pohrt, V.L. Popov, "Adhesive contact simulation of elastic solids using local mesh-dependent
+    - Pohrt, R., Popov, V.L., "Adhesive contact simulation of elastic solids using local mesh-dependent
       detachment criterion in boundary elements method", Facta Universitatis, Mech. Eng. 13(1):3-10 (2015).
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return (2.0 / math.pi) * (math.log(1.0 + math.sqrt(2.0)) - (math.sqrt(2.0) - 1.0) / 3.0)
@@ -510,9 +510,9 @@ def critical_stress(*, E_star: float, work: float, spacing: float) -> float:
 
     References
     ----------
-    - R. Pohrt, V.L. Popov, "Adhesive contact simulation of elastic solids using local mesh-dependent
+    - Pohrt, R., Popov, V.L., "Adhesive contact simulation of elastic solids using local mesh-dependent
       detachment criterion in boundary elements method", Facta Universitatis, Mech. Eng. 13(1):3-10 (2015).
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return math.sqrt(E_star * work / (ELEMENT_ENERGY_CONSTANT * spacing))
@@ -547,7 +547,7 @@ def filling_energy(*, E_star: float, work: float, radius: float, approach: float
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     adhering_moment, _ = integrate.quad(lambda r: filling(r) * r, 0.0, radius, limit=200)
@@ -575,7 +575,7 @@ def filling_equilibrium_approach(*, E_star: float, work: float, radius: float, f
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return -math.sqrt(2.0 * math.pi * filling_at_radius * radius * work / E_star)
@@ -602,7 +602,7 @@ def filling_adhesion_force(*, E_star: float, work: float, radius: float, filling
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return math.sqrt(8.0 * math.pi * E_star * radius**3 * filling_at_radius * work)
@@ -623,7 +623,7 @@ def constant_force_filling(*, core_radius: float):
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return lambda a: np.minimum(1.0, (core_radius / np.asarray(a, float)) ** 3)
@@ -651,7 +651,7 @@ def filling_is_stable(*, radius: float, filling, step: float | None = None) -> b
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     h = step if step is not None else 1e-6 * radius
@@ -685,7 +685,7 @@ def filling_last_stable_radius(*, filling, radius_min: float, radius_max: float)
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
 
@@ -723,7 +723,7 @@ def graded_green_coefficient(*, E0: float, c0: float, k: float) -> float:
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return (3.0 + k) * c0**k / (2.0 * math.pi * (1.0 + k) * (2.0 + k) * E0)
@@ -752,7 +752,7 @@ def graded_stiffness(*, E0: float, c0: float, k: float, radius: float) -> float:
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return 4.0 * (2.0 + k) * math.cos(k * math.pi / 2) / (3.0 + k) * E0 * radius ** (1.0 + k) / c0**k
@@ -785,7 +785,7 @@ def graded_energy(*, E0: float, c0: float, k: float, radius: float, approach: fl
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return (
@@ -820,7 +820,7 @@ def graded_critical_approach(*, E0: float, c0: float, k: float, radius: float, w
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return -math.sqrt(
@@ -848,7 +848,7 @@ def graded_psi(k: float) -> float:
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return 2.0 * (2.0 + k) * math.cos(k * math.pi / 2) / ((3.0 + k) * (1.0 + k))
@@ -884,7 +884,7 @@ def graded_adhesion_force(
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return math.sqrt(8.0 * math.pi * graded_psi(k) * E0 * filling_factor * work * radius ** (3.0 + k) / c0**k)
@@ -914,7 +914,7 @@ def force_at_nominal_area(force, *, area, nominal_area, k: float = 0.0):
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return force * (nominal_area / area) ** ((3.0 + k) / 4.0)
@@ -945,7 +945,7 @@ def graded_two_square_integral(k: float) -> float:
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     if not -1.0 < k < 1.0:
@@ -983,7 +983,7 @@ def graded_criterion_constant(k: float) -> float:
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     C = (3.0 + k) * graded_two_square_integral(k) / (4.0 * math.pi * (1.0 + k) * (2.0 + k))
@@ -1018,7 +1018,7 @@ def graded_critical_stress(*, E0: float, c0: float, k: float, work: float, spaci
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return graded_criterion_constant(k) * math.sqrt(E0 * work / (c0**k * spacing ** (1.0 - k)))
@@ -1051,8 +1051,8 @@ def elliptical_punch_stiffness(*, E_star: float, semi_major: float, semi_minor: 
 
     References
     ----------
-    - L.A. Galin, "Contact Problems in the Theory of Elasticity" (1953; English translation 1961).
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Galin, L.A., "Contact Problems in the Theory of Elasticity" (1953; English translation 1961).
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     m = 1.0 - (semi_minor / semi_major) ** 2
@@ -1078,9 +1078,9 @@ def jkr_pulloff_force(*, work: float, sphere_radius: float) -> float:
 
     References
     ----------
-    - K.L. Johnson, K. Kendall, A.D. Roberts, "Surface energy and the contact of elastic solids",
+    - Johnson, K.L., Kendall, K., Roberts, A.D., "Surface energy and the contact of elastic solids",
       Proc. R. Soc. Lond. A 324:301-313 (1971).
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     return 1.5 * math.pi * work * sphere_radius
@@ -1107,7 +1107,7 @@ def jkr_force(*, E_star: float, work: float, sphere_radius: float, contact_radiu
 
     References
     ----------
-    - K.L. Johnson, K. Kendall, A.D. Roberts, "Surface energy and the contact of elastic solids",
+    - Johnson, K.L., Kendall, K., Roberts, A.D., "Surface energy and the contact of elastic solids",
       Proc. R. Soc. Lond. A 324:301-313 (1971).
     """
     a = np.asarray(contact_radius, float)
@@ -1135,7 +1135,7 @@ def jkr_approach(*, E_star: float, work: float, sphere_radius: float, contact_ra
 
     References
     ----------
-    - K.L. Johnson, K. Kendall, A.D. Roberts, "Surface energy and the contact of elastic solids",
+    - Johnson, K.L., Kendall, K., Roberts, A.D., "Surface energy and the contact of elastic solids",
       Proc. R. Soc. Lond. A 324:301-313 (1971).
     """
     a = np.asarray(contact_radius, float)

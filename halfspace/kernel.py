@@ -50,7 +50,7 @@ def love_square_integral(x, y, half_width: float):
 
     References
     ----------
-    - A.E.H. Love, "The stress produced in a semi-infinite solid by pressure on part of the boundary",
+    - Love, A.E.H., "The stress produced in a semi-infinite solid by pressure on part of the boundary",
       Phil. Trans. R. Soc. Lond. A 228:377-420 (1929).
     """
     b = half_width
@@ -111,7 +111,7 @@ def love_influence(
 
     References
     ----------
-    - A.E.H. Love, "The stress produced in a semi-infinite solid by pressure on part of the boundary",
+    - Love, A.E.H., "The stress produced in a semi-infinite solid by pressure on part of the boundary",
       Phil. Trans. R. Soc. Lond. A 228:377-420 (1929).
     """
     return _offset_layout(love_square_integral, nx, ny, spacing, padded) / (math.pi * E_star)
@@ -222,7 +222,7 @@ def graded_square_integral(x, y, half_width: float, k: float):
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     from scipy.special import hyp2f1
@@ -285,7 +285,7 @@ def graded_influence(
 
     References
     ----------
-    - V.L. Popov, R. Pohrt, Q. Li, "Strength of adhesive contacts: influence of contact geometry and
+    - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
     from contact_scene.theory import graded_green_coefficient
