@@ -40,9 +40,19 @@ def test_compare_circle_runs_all_three_methods_and_passes():
 
 def test_compare_skips_fem_for_a_square_and_checks_bounds():
     cmp = crossval.compare(crossval.SUITE["square"], resolution=16, resolutions={"bem_energy": 1.0})
-    assert list(cmp.results) == ["bem_griffith", "bem_energy"] and "fem_reference" in cmp.skipped
-    bounds = [c for c in cmp.checks if c.kind == "bounds"]
-    assert len(bounds) == 2 and all(c.passed for c in bounds), [c.explain() for c in bounds]
+    partner = "bem_energy on bem_griffith's grid (w = 0)"
+    assert list(cmp.results) == ["bem_griffith", "bem_energy", partner] and "fem_reference" in cmp.skipped
+    # Eqs. 13 and 18 for each method's force; the energy BEM's bracket widened by the Griffith
+    # bar; the two BEMs' stiffness on one grid in the kernels' window
+    bounds = {(c.method, c.quantity) for c in cmp.checks if c.kind == "bounds"}
+    assert bounds == {
+        ("bem_griffith", "pulloff_force"),
+        ("bem_energy", "pulloff_force"),
+        ("bem_griffith vs bem_energy", "pulloff_force bracket"),
+        (f"bem_griffith vs {partner}", "stiffness"),
+    }
+    failed = [c.explain() for c in cmp.checks if not c.passed]
+    assert not failed, failed
 
 
 def test_a_failing_check_explains_itself():

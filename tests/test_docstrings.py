@@ -15,12 +15,12 @@ import importlib
 import inspect
 import re
 
+# imported, not skipped when missing: numpydoc is in the test extra
+import numpydoc.docscrape as docscrape
+import numpydoc.validate as numpydoc_validate
 import pytest
 
 import contact_scene as cs
-
-numpydoc_validate = pytest.importorskip("numpydoc.validate")
-docscrape = pytest.importorskip("numpydoc.docscrape")
 
 PACKAGES = ("contact_scene", "halfspace", "bem_griffith", "bem_energy", "fem_reference", "crossval")
 #: modules offered as a name of a package's ``__all__``: their own ``__all__`` is public too
