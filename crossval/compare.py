@@ -45,6 +45,38 @@ __all__ = [
 
 @dataclass(frozen=True)
 class Check:
+    """One check of a result (or a pair of results) against a reference, with its tolerance.
+
+    Attributes
+    ----------
+    method : str
+        The method checked, or ``"a vs b"`` for a pair.
+    quantity : str
+        ``pulloff_force``, ``pulloff_approach`` or ``stiffness``; ``"<quantity> bracket"`` when
+        a reference must lie in a method's bracket; ``raster mirror`` / ``raster rotation 90``
+        for the raster's equivariance; ``converged`` for a result that did not converge.
+    value : float
+        The value checked (for a bracket check: the reference's value).
+    reference : float
+        The value it is compared with; for ``kind="bounds"`` the lower end of the interval.
+    reference_name : str
+        Where the reference comes from (a closed form's equations, a method's name).
+    tolerance : float
+        Relative tolerance (``"relative"``), slack below the lower bound (``"bounds"``), or the
+        number of cells allowed to differ (``"exact"``).
+    kind : str
+        ``"relative"``, ``"bounds"`` or ``"exact"``.
+    upper : float or None
+        The upper end of the interval (``kind="bounds"``); None: unbounded above.
+    role : str
+        ``"validation"``: an independent check; ``"calibration"``: a residual of a quantity the
+        method was fitted to (it can fail, but its passing validates nothing).
+    converged : bool
+        Whether every result the check compares converged; a check of an unconverged result fails.
+    basis : str
+        Where the tolerance comes from (the error model's study, or the rule between methods).
+    """
+
     method: str
     quantity: str
     value: float
@@ -63,10 +95,12 @@ class Check:
 
     @property
     def difference(self) -> float:
+        """The relative difference ``value / reference - 1`` (infinite for a zero reference)."""
         return self.value / self.reference - 1 if self.reference else math.inf
 
     @property
     def passed(self) -> bool:
+        """Whether the check holds: converged, and within its tolerance or interval."""
         if not self.converged:
             return False
         if self.kind == "bounds":
@@ -84,6 +118,13 @@ class Check:
         return "calib" if self.role == "calibration" else "ok"
 
     def explain(self) -> str:
+        """One sentence for people: the value, the reference, the difference and the tolerance.
+
+        Returns
+        -------
+        str
+            The explanation, naming why a check of an unconverged result fails.
+        """
         if not self.converged and self.quantity == "converged":
             return f"{self.method}: did not converge ({self.basis or 'see the result messages'})"
         if not self.converged:
@@ -115,6 +156,23 @@ class Check:
 
 @dataclass(frozen=True, eq=False)
 class Comparison:
+    """A scene's results by method and their checks, as :func:`compare` returns them.
+
+    Attributes
+    ----------
+    scene : contact_scene.Scene
+        The scene compared.
+    results : dict
+        ``{name: Result}``: each method's result, and the same-grid partner solves
+        (``"bem_energy on bem_griffith's grid (w = 0)"``, see :func:`same_grid_partners`).
+    theory : dict
+        The closed-form values (:func:`reference_values`).
+    checks : tuple of Check
+        Every check, against theory and between methods.
+    skipped : dict
+        ``{method: reason}`` for the methods that do not apply to the scene.
+    """
+
     scene: cs.Scene
     results: dict
     theory: dict
@@ -123,6 +181,7 @@ class Comparison:
 
     @property
     def passed(self) -> bool:
+        """Whether every check passed."""
         return all(c.passed for c in self.checks)
 
 
@@ -423,11 +482,37 @@ def compare(
 ) -> Comparison:
     """Solve ``scene`` with every applicable method (or those named) and check the results.
 
-    ``resolution`` is the grid methods' elements per radius; the others run their defaults
-    unless ``resolutions`` names a method's own resolution (e.g. ``{"bem_energy": 1.0}``: the
-    energy method's coarse zero-range sequence, seconds instead of minutes).
-    ``callback(method, result)`` follows each method; ``point_callback(method, approach, force,
-    contact_area)`` each point of a solver's curve as it is computed (progress)."""
+    Besides each method's own result, a method with a grid kernel also runs on the other grid
+    method's grid without adhesion (:func:`same_grid_partners`), for the same-grid stiffness
+    check.
+
+    Parameters
+    ----------
+    scene : contact_scene.Scene
+        The scene.
+    methods : list of str, optional
+        Method names (``crossval.METHODS``); default: every method that applies.
+    resolution : float, optional
+        The grid methods' elements per equivalent radius sqrt(A/pi); default: each method's own.
+    resolutions : dict, optional
+        ``{method: resolution}`` in a method's own measure, e.g. ``{"bem_energy": 1.0}``: the
+        energy method's coarse zero-range sequence, seconds instead of minutes.
+    callback : callable, optional
+        ``callback(name, result)`` after each solve.
+    point_callback : callable, optional
+        ``point_callback(method, approach, force, contact_area)`` at each point of a solver's
+        curve as it is computed (progress).
+
+    Returns
+    -------
+    Comparison
+        The results, the closed-form values, the checks and the methods skipped.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        ``resolutions`` names an unknown method, or a resolution a method refuses.
+    """
     chosen = applicable_methods(scene) if methods is None else [METHODS[m] for m in methods]
     skipped = {m.name: m.applies(scene) for m in METHODS.values() if m.applies(scene)}
     own = dict(resolutions or {})

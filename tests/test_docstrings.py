@@ -109,14 +109,6 @@ NOT_YET = {
     # crossval/methods.py
     "crossval.applicable_methods": {"GL08"},
     "crossval.get_method": {"GL08"},
-    # crossval/compare.py
-    "crossval.compare": {"PR01", "RT01"},
-    "crossval.Check": {"PR01", "SS01"},
-    "crossval.Comparison": {"PR01", "SS01"},
-    "crossval.Check.difference": {"GL08"},
-    "crossval.Check.passed": {"GL08"},
-    "crossval.Check.explain": {"GL08"},
-    "crossval.Comparison.passed": {"GL08"},
     # crossval/report.py
     "crossval.report": {"PR01", "RT01"},
     # crossval/regress.py
