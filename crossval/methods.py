@@ -18,77 +18,181 @@ __all__ = ["Method", "Resolution", "Sweeps", "METHODS", "reference_method", "get
 
 @dataclass(frozen=True)
 class Resolution:
-    """What a method's ``resolution`` means on one scene, and the values it accepts."""
+    """What a method's ``resolution`` means on one scene, and the values it accepts.
+
+    Attributes
+    ----------
+    meaning : str
+        What the number counts, as the refusal of a value outside the range states it.
+    label : str
+        The axis label of a convergence plot, e.g. ``"N: elements/radius"``.
+    low : float
+        The smallest accepted resolution (inclusive; the bound the method's settings enforce).
+    high : float
+        The largest accepted resolution (inclusive); infinite where the method sets no bound.
+    per_radius : bool
+        Whether it counts BEM elements per equivalent radius sqrt(A/pi) (the grid methods share
+        ``crossval compare --resolution``); else the method's own measure (mesh grading, elements
+        per process zone).
+    below : str
+        Why a value below ``low`` is refused, when there is more to say than the range; empty
+        otherwise.
+    above : str
+        Why a value above ``high`` is refused, likewise.
+    """
 
     meaning: str
-    #: the axis label of a convergence plot, e.g. "N: elements/radius"
     label: str
     low: float
     high: float
-    #: whether it counts BEM elements per equivalent radius sqrt(A/pi) (the grid methods share
-    #: ``crossval compare --resolution``); else the method's own measure (mesh grading, elements
-    #: per process zone)
     per_radius: bool
-    #: why a value outside [low, high] is refused, when there is more to say than the range
     below: str = ""
     above: str = ""
 
 
 @dataclass(frozen=True)
 class Sweeps:
-    """The resolutions the harness runs a method at (in the method's own ``resolution``)."""
+    """The resolutions the harness runs a method at (in the method's own ``resolution``).
 
-    study: tuple[float, ...]  # ``crossval study`` unless told otherwise
-    quick: tuple[float, ...]  # ``crossval report --quick``
-    full: tuple[float, ...]  # ``crossval report``
-    regression: float  # ``crossval regress``: one quick run per suite scene
-    #: ``crossval compare --quick``: the method's own quick resolution where it does not count
-    #: elements per radius (None: the shared ``--resolution``)
+    Attributes
+    ----------
+    study : tuple of float
+        ``crossval study`` unless told otherwise.
+    quick : tuple of float
+        ``crossval report --quick``.
+    full : tuple of float
+        ``crossval report``.
+    regression : float
+        ``crossval regress``: one quick run per suite scene.
+    compare_quick : float or None
+        ``crossval compare --quick``: the method's own quick resolution where it does not count
+        elements per radius (None: the shared ``--resolution``).
+    """
+
+    study: tuple[float, ...]
+    quick: tuple[float, ...]
+    full: tuple[float, ...]
+    regression: float
     compare_quick: float | None = None
 
 
 @dataclass(frozen=True)
 class Method:
-    """A registered method: what it applies to and what its ``resolution`` means, stated by the
-    method's own functions so that the harness never branches on a method's name.  Accuracy is
-    not here: each result carries its method's error bars (``Result.error_bars``)."""
+    """A registered method: what it applies to and what its ``resolution`` means.
+
+    Both are stated by the method's own functions so that the harness never branches on a
+    method's name.  Accuracy is not here: each result carries its method's error bars
+    (``Result.error_bars``).
+
+    Attributes
+    ----------
+    name : str
+        The key in :data:`METHODS` and the name of ``--method``.
+    module : str
+        The module whose ``solve_with_resolution(scene, resolution, callback=...)`` runs it,
+        imported only when a scene is solved.
+    description : str
+        One line for listings.
+    applies : callable
+        ``applies(scene)``: None when the method can represent the scene, else the reason it
+        cannot.
+    resolution : callable
+        ``resolution(scene)``: the :class:`Resolution` (meaning and accepted range) on that scene.
+    sweeps : Sweeps
+        The resolutions the harness runs it at.
+    reference_kind : str
+        How its results serve as a reference where no closed form exists: ``"bounded"`` (one
+        result with a bound on its error), ``"sequence"`` (a limit extrapolated in 1/N over >= 3
+        grids), or ``""`` (not a reference).
+    uses_range : bool
+        Whether the method models a finite interaction range (``adhesion.range``, ``--range``);
+        the others are zero-range (Griffith) methods and would silently ignore it.
+    grid_kernel : str or None
+        The half-space discretisation of its single-grid solves (:mod:`halfspace`: ``"love"`` for
+        Love's uniform-pressure squares, ``"collocation"`` for point-collocated Boussinesq
+        coefficients), so that two methods' stiffnesses on one grid are held to their kernels'
+        measured difference; None for a method without a grid.
+    """
 
     name: str
     module: str
     description: str
-    applies: Callable[[Scene], str | None]  # None when it applies, else the reason it does not
+    applies: Callable[[Scene], str | None]
     resolution: Callable[[Scene], Resolution]
     sweeps: Sweeps
-    #: how its results serve as a reference where no closed form exists: "bounded" (one result
-    #: with a bound on its error), "sequence" (a limit extrapolated in 1/N over >= 3 grids), or
-    #: "" (not a reference)
     reference_kind: str = ""
-    #: whether the method models a finite interaction range (``adhesion.range``, ``--range``);
-    #: the others are zero-range (Griffith) methods and would silently ignore it
     uses_range: bool = False
-    #: the half-space discretisation of its single-grid solves (``halfspace``: "love" for Love's
-    #: uniform-pressure squares, "collocation" for point-collocated Boussinesq coefficients), so
-    #: that two methods' stiffnesses on one grid are held to their kernels' measured difference;
-    #: None for a method without a grid
     grid_kernel: str | None = None
 
     def resolution_meaning(self, scene: Scene) -> str:
-        """What ``resolution`` (``--resolution``) means for this method on this scene."""
+        """What ``resolution`` (``--resolution``) means for this method on this scene.
+
+        Parameters
+        ----------
+        scene : contact_scene.Scene
+            The scene to be solved.
+
+        Returns
+        -------
+        str
+            E.g. "elements per equivalent radius sqrt(A/pi)".
+        """
         return self.resolution(scene).meaning
 
     def resolution_range(self, scene: Scene) -> tuple[float, float]:
-        """The resolutions this method accepts for ``scene`` (the bounds its settings enforce,
-        expressed as ``resolution``)."""
+        """The resolutions this method accepts for ``scene``.
+
+        Parameters
+        ----------
+        scene : contact_scene.Scene
+            The scene to be solved.
+
+        Returns
+        -------
+        tuple of float
+            ``(low, high)``, inclusive: the bounds its settings enforce, expressed as
+            ``resolution``; ``high`` may be infinite.
+        """
         r = self.resolution(scene)
         return r.low, r.high
 
     def resolution_is_grid(self, scene: Scene) -> bool:
-        """Whether ``resolution`` means BEM elements per radius for this scene (the FEM's is
-        a mesh grading, the zero-range energy method's elements per process zone)."""
+        """Whether ``resolution`` means BEM elements per radius for this scene.
+
+        The FEM's is a mesh grading, the zero-range energy method's elements per process zone.
+
+        Parameters
+        ----------
+        scene : contact_scene.Scene
+            The scene to be solved.
+
+        Returns
+        -------
+        bool
+            True where it counts elements per equivalent radius sqrt(A/pi).
+        """
         return self.resolution(scene).per_radius
 
     def check_resolution(self, scene: Scene, resolution: float | None, *, field: str = "resolution") -> None:
-        """Raise SceneError, in terms of ``resolution``, if the method cannot run at it."""
+        """Raise SceneError, in terms of ``resolution``, if the method cannot run at it.
+
+        Parameters
+        ----------
+        scene : contact_scene.Scene
+            The scene to be solved.
+        resolution : float or None
+            The resolution asked for; None (the method's default) is always accepted.
+        field : str, optional
+            The name the error gives the value (e.g. a command-line option).
+
+        Raises
+        ------
+        contact_scene.SceneError
+            If ``resolution`` is not a finite number > 0 or lies outside
+            :meth:`resolution_range`; the message states the range (rounded inward to two
+            significant digits), why a value beyond it is refused where there is more to say,
+            and what ``resolution`` means.
+        """
         if resolution is None:
             return
         if isinstance(resolution, bool) or not isinstance(resolution, (int, float)):
@@ -108,6 +212,31 @@ class Method:
         raise SceneError(field, f"{self.name} takes {limits} here{why}; it means {r.meaning} (got {resolution:g})")
 
     def solve(self, scene: Scene, *, resolution: float | None = None, callback=None):
+        """Solve ``scene`` with this method at ``resolution``.
+
+        The resolution is checked first (:meth:`check_resolution`), then the method's module is
+        imported and its ``solve_with_resolution`` runs.
+
+        Parameters
+        ----------
+        scene : contact_scene.Scene
+            The scene to solve.
+        resolution : float or None, optional
+            In the method's own measure (:meth:`resolution_meaning`); None for its default.
+        callback : callable, optional
+            ``callback(approach, force, contact_area)`` at the points the method records
+            (progress).
+
+        Returns
+        -------
+        contact_scene.Result
+            As the method's ``solve_with_resolution`` returns it.
+
+        Raises
+        ------
+        contact_scene.SceneError
+            If the resolution is refused, or the method's solver refuses a field of the scene.
+        """
         self.check_resolution(scene, resolution)
         mod = importlib.import_module(self.module)
         return mod.solve_with_resolution(scene, resolution, callback=callback)
@@ -235,16 +364,59 @@ METHODS: dict[str, Method] = {
 
 
 def get_method(name: str) -> Method:
+    """The registered method of that name.
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`METHODS`: ``"bem_griffith"``, ``"bem_energy"`` or ``"fem_reference"``.
+
+    Returns
+    -------
+    crossval.methods.Method
+        What it applies to, what its resolution means, and how to run it.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Field ``method``, if no method has that name; the message lists the available ones.
+    """
     if name not in METHODS:
         raise SceneError("method", f"unknown method {name!r}; available: {', '.join(sorted(METHODS))}")
     return METHODS[name]
 
 
 def reference_method(scene: Scene, kind: str) -> Method | None:
-    """The first registered method that applies to ``scene`` and serves as a reference of
-    ``kind`` (``Method.reference_kind``: "bounded" or "sequence"), or None."""
+    """The first registered method that applies to ``scene`` and serves as a reference of ``kind``.
+
+    Parameters
+    ----------
+    scene : contact_scene.Scene
+        The scene a reference is needed for.
+    kind : str
+        ``Method.reference_kind``: ``"bounded"`` or ``"sequence"``.
+
+    Returns
+    -------
+    crossval.methods.Method or None
+        In registration order; None if no applicable method serves as that kind of reference.
+    """
     return next((m for m in METHODS.values() if m.reference_kind == kind and m.applies(scene) is None), None)
 
 
 def applicable_methods(scene: Scene) -> list[Method]:
+    """The registered methods that can represent ``scene``.
+
+    A scene runs only through these; each of the others states why not (``Method.applies``).
+
+    Parameters
+    ----------
+    scene : contact_scene.Scene
+        The scene to be solved.
+
+    Returns
+    -------
+    list of crossval.methods.Method
+        In registration order (:data:`METHODS`): those whose ``applies(scene)`` is None.
+    """
     return [m for m in METHODS.values() if m.applies(scene) is None]

@@ -31,6 +31,25 @@ RTOL = 1e-7
 
 @dataclass(frozen=True)
 class Mismatch:
+    """A stored number that the current code no longer reproduces within its tolerance.
+
+    Attributes
+    ----------
+    scene : str
+        The suite scene's name.
+    method : str
+        The method's name.
+    quantity : str
+        ``"pulloff_force"``, ``"pulloff_approach"`` or ``"stiffness"``; for a case the file does
+        not hold, ``"(missing from the reference file)"`` (with NaN values and a zero tolerance).
+    stored : float
+        The value in the reference file.
+    now : float
+        The value the current code computes.
+    rtol : float
+        The relative tolerance stored with the case.
+    """
+
     scene: str
     method: str
     quantity: str
@@ -39,6 +58,13 @@ class Mismatch:
     rtol: float
 
     def explain(self) -> str:
+        """One line: the case, both values, their relative change and the tolerance.
+
+        Returns
+        -------
+        str
+            "scene/method: quantity = now, stored value (relative change, tolerance)".
+        """
         return (
             f"{self.scene}/{self.method}: {self.quantity} = {self.now:.10g}, stored {self.stored:.10g} "
             f"({self.now / self.stored - 1:+.2e}, tolerance {self.rtol:.0e})"
@@ -50,7 +76,40 @@ def _jobs():
 
 
 def regress(*, update: bool = False, path: Path = REFERENCE_FILE, workers: int = 1, callback=None) -> list[Mismatch]:
-    """Recompute the cases and compare them with ``path`` (or rewrite it with ``update``)."""
+    """Recompute the cases and compare them with ``path`` (or rewrite it with ``update``).
+
+    The cases are every suite scene (:data:`crossval.SUITE`) through each method that applies to
+    it, at the method's regression resolution (:data:`CASES`).  They are always recomputed (no
+    disk cache), so that a stored result cannot hide a change.
+
+    Parameters
+    ----------
+    update : bool, optional
+        Rewrite ``path`` with the current values, the package version and a relative tolerance
+        of 1e-7 per case instead of comparing (the file is replaced whole, so an interrupted run
+        leaves the previous one).
+    path : pathlib.Path, optional
+        The reference file; by default the one stored in the package (:data:`REFERENCE_FILE`).
+    workers : int, optional
+        Local processes; more than one runs the solves in a process pool.
+    callback : callable, optional
+        ``callback(job, result)`` after each solve (progress).
+
+    Returns
+    -------
+    list of Mismatch
+        Each quantity (pull-off force, approach at pull-off, stiffness) that differs from the
+        stored value by more than the stored relative tolerance (a NaN on either side is a
+        mismatch), and each case the file does not hold; empty when everything matches, and
+        always empty with ``update``.
+
+    Raises
+    ------
+    ValueError
+        If the file is in another format than this version reads.
+    FileNotFoundError
+        If ``path`` does not exist (without ``update``).
+    """
     jobs = _jobs()
     results = run_jobs(jobs, workers=workers, callback=callback)
     current = [

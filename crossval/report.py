@@ -31,6 +31,22 @@ FULL = {m.name: m.sweeps.full for m in METHODS.values()}
 
 @dataclass(frozen=True, eq=False)
 class Report:
+    """What :func:`report` found and where it wrote it.
+
+    Attributes
+    ----------
+    directory : pathlib.Path
+        The directory holding index.html, results.json and the PNG plots.
+    studies : dict
+        Scene name -> its :class:`crossval.study.Study` (error against resolution and time).
+    checks : dict
+        Scene name -> the :class:`crossval.Check` of the methods' finest runs.
+    passed : bool
+        Whether every check of every scene passed.
+    wall_time_s : float
+        The report's wall time in seconds, solves included.
+    """
+
     directory: Path
     studies: dict
     checks: dict
@@ -136,8 +152,42 @@ def report(
 ) -> Report:
     """Run the suite, check every method, write the report; returns what it found.
 
-    ``extremes`` (default: the full report only) adds the stiff and extreme cases table of
-    :mod:`crossval.extremes` (about a minute on 2 cores)."""
+    Each scene runs through every method that applies to it, over the method's quick or full
+    sweep (:data:`QUICK`, :data:`FULL`); each method's error is studied against the scene's best
+    reference (:func:`crossval.study`), and the finest run of each method is checked against the
+    closed forms and the other methods (:func:`crossval.compare`); on flat faces each grid method
+    also runs on the other's grid without adhesion, which holds their stiffnesses to the kernels'
+    measured same-grid difference.  The page shows the agreement map and, per scene, the results,
+    the checks, the force-approach curves and the error against wall time.
+
+    Parameters
+    ----------
+    out_dir : str or os.PathLike, optional
+        Directory (created if missing) for index.html (images embedded), results.json,
+        agreement.png and one PNG per scene; each file is replaced whole, so an interrupted run
+        leaves the previous one.
+    quick : bool, optional
+        The coarse sweeps (under 3 minutes on 2 cores) instead of the full ones.
+    workers : int, optional
+        Local processes; more than one runs the solves in a process pool.
+    scheduler : str or distributed.Client, optional
+        A dask.distributed address or client to run the solves on instead.
+    cache_dir : str or os.PathLike or None, optional
+        Reuses stored results and stores new ones; None keeps them in memory only.
+    scenes : iterable of str, optional
+        Names of suite scenes (:data:`crossval.SUITE`); all of them by default.
+    callback : callable, optional
+        ``callback(job, result)`` after each solve of the sweeps (progress).
+    extremes : bool or None, optional
+        Add the stiff and extreme cases table of :mod:`crossval.extremes` (about a minute on
+        2 cores); None: for the full report only.
+
+    Returns
+    -------
+    Report
+        The studies and checks per scene, whether every check passed, the output directory and
+        the wall time.
+    """
     import matplotlib
 
     matplotlib.use("Agg")

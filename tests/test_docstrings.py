@@ -106,13 +106,6 @@ NOT_YET = {
     "fem_reference.solve": {"PR01", "RT01"},
     "fem_reference.solve_with_resolution": {"PR01", "RT01"},
     "fem_reference.unit_solution": {"PR01", "RT01"},
-    # crossval/methods.py
-    "crossval.applicable_methods": {"GL08"},
-    "crossval.get_method": {"GL08"},
-    # crossval/report.py
-    "crossval.report": {"PR01", "RT01"},
-    # crossval/regress.py
-    "crossval.regress": {"PR01", "RT01"},
 }
 
 
