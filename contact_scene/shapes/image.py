@@ -9,7 +9,7 @@ import numpy as np
 from scipy import ndimage
 
 from ..errors import SceneError
-from ..validation import real
+from ..validation import flag, real
 from .base import Incircle, Shape
 
 __all__ = ["ImageMask"]
@@ -46,7 +46,7 @@ class ImageMask(Shape):
     path: str = ""
     pixel_size: float = real(1.0, gt=0)
     threshold: float = real(0.5, ge=0, le=1)
-    invert: bool = False
+    invert: bool = flag(False)
     kind = "image"
 
     def _complete(self):

@@ -8,7 +8,7 @@ from functools import cached_property
 
 import numpy as np
 
-from ..validation import real
+from ..validation import flag, point, real
 from .base import Incircle, Shape
 
 __all__ = ["Transformed"]
@@ -41,10 +41,10 @@ class Transformed(Shape):
     """
 
     shape: Shape
-    rotation_deg: float = 0.0
-    mirror: bool = False
+    rotation_deg: float = real(0.0, name="rotation_deg")
+    mirror: bool = flag(False, name="mirror")
     scale: float = real(1.0, gt=0, name="scale")
-    about: tuple[float, float] = (0.0, 0.0)
+    about: tuple[float, float] = point((0.0, 0.0), name="about")
     kind = "transformed"
 
     @cached_property
