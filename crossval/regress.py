@@ -75,7 +75,7 @@ def _jobs():
     return [Job(SUITE[s], m.name, CASES[m.name]) for s in SUITE for m in applicable_methods(SUITE[s])]
 
 
-def regress(*, update: bool = False, path: Path = REFERENCE_FILE, workers: int = 1, callback=None) -> list[Mismatch]:
+def regress(*, update: bool = False, path: Path | None = None, workers: int = 1, callback=None) -> list[Mismatch]:
     """Recompute the cases and compare them with ``path`` (or rewrite it with ``update``).
 
     The cases are every suite scene (:data:`crossval.SUITE`) through each method that applies to
@@ -89,7 +89,8 @@ def regress(*, update: bool = False, path: Path = REFERENCE_FILE, workers: int =
         of 1e-7 per case instead of comparing (the file is replaced whole, so an interrupted run
         leaves the previous one).
     path : pathlib.Path, optional
-        The reference file; by default the one stored in the package (:data:`REFERENCE_FILE`).
+        The reference file; None (default) for the one stored in the package
+        (:data:`REFERENCE_FILE`).
     workers : int, optional
         Local processes; more than one runs the solves in a process pool.
     callback : callable, optional
@@ -110,6 +111,7 @@ def regress(*, update: bool = False, path: Path = REFERENCE_FILE, workers: int =
     FileNotFoundError
         If ``path`` does not exist (without ``update``).
     """
+    path = REFERENCE_FILE if path is None else Path(path)
     jobs = _jobs()
     results = run_jobs(jobs, workers=workers, callback=callback)
     current = [
