@@ -26,6 +26,27 @@ class Grid:
     are measured from the mean plane of the surface (the zero Fourier mode carries no
     displacement): a net load per cell would move a periodic half-space infinitely far.
     Implemented by the Griffith BEM for homogeneous bodies; other methods refuse it.
+
+    Parameters
+    ----------
+    elements_per_radius : float or None, optional
+        N, elements per equivalent radius sqrt(A/pi), in (0, 1e5]; 32 by default.  None when
+        ``spacing`` is given.
+    spacing : float or None, optional
+        The element side Delta (a length), > 0; None (the default) to derive it from
+        ``elements_per_radius``.
+    periodic : bool, optional
+        Repeat the face's square cell over the plane; False by default.
+    period : float or None, optional
+        Side of the periodic cell (a length), > 0; required when ``periodic``, and only then.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming ``grid.<field>`` and its allowed range for a value out of that range;
+        ``grid.period`` for a periodic grid without a period or a period without
+        ``periodic = True``; ``grid.elements_per_radius`` when neither it nor ``spacing`` is
+        given.
     """
 
     elements_per_radius: float | None = real(32.0, gt=0, le=1e5, optional=True)
@@ -44,6 +65,20 @@ class Grid:
             raise SceneError("grid.elements_per_radius", "give elements_per_radius or spacing")
 
     def spacing_for(self, shape: Shape) -> float:
+        """The element side Delta this grid gives a face.
+
+        Parameters
+        ----------
+        shape : contact_scene.Shape
+            The face; its equivalent radius sqrt(A/pi) (nominal area A) sets Delta when the
+            grid gives ``elements_per_radius``.
+
+        Returns
+        -------
+        float
+            ``spacing`` if given, else sqrt(A/pi) / ``elements_per_radius``; on a periodic grid
+            reduced to period / n, n the smallest whole number with period / n <= that value.
+        """
         if self.spacing is not None:
             h = self.spacing
         else:

@@ -16,7 +16,22 @@ __all__ = ["SceneError", "check_real", "check_int", "check_choice"]
 class SceneError(ValueError):
     """An invalid scene, scene file, discretisation or solver setting.
 
-    ``field`` is the dotted name of the offending entry (``material.youngs_modulus``).
+    The message names the offending entry and its allowed range, so that the CLI can print it
+    as is (and exit with status 2); ``str(error)`` is ``"<field>: <message>"``.
+
+    Parameters
+    ----------
+    field : str
+        The dotted name of the offending entry, as a scene file spells it
+        (``material.youngs_modulus``) or as the solver's settings are named
+        (``settings.rtol``).
+    message : str
+        What is wrong, with the allowed values (``"must be > 0 (got -1)"``).
+
+    Attributes
+    ----------
+    field : str
+        The ``field`` given, for a caller that reacts to one entry.
     """
 
     def __init__(self, field: str, message: str):

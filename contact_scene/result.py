@@ -30,7 +30,20 @@ JSON_KEYS = (
 
 @dataclass(frozen=True, eq=False)
 class Curve:
-    """Force-approach curve: approach d, normal force F (< 0 tensile), contact area A."""
+    """Force-approach curve: approach d, normal force F (< 0 tensile), contact area A.
+
+    The three arrays are 1-D, of equal length, in the order of the loading path, and stored as
+    float arrays; arrays of other shapes raise ValueError.
+
+    Attributes
+    ----------
+    approach : numpy.ndarray
+        The approach d of the punch at each point (a length; < 0 when pulled).
+    force : numpy.ndarray
+        The normal force F there (< 0 tensile).
+    contact_area : numpy.ndarray
+        The area in contact there.
+    """
 
     approach: np.ndarray
     force: np.ndarray
@@ -52,11 +65,31 @@ class Curve:
 
 @dataclass(frozen=True, eq=False)
 class Snapshot:
-    """The contact set (and, when asked, fields) at one approach."""
+    """The contact set (and, when asked, fields) at one approach.
+
+    Attributes
+    ----------
+    approach : float
+        The approach d of the punch.
+    force : float
+        The normal force F there (< 0 tensile).
+    contact : numpy.ndarray
+        Boolean mask of the elements in contact, on the method's grid, indexed [ix, iy].
+    spacing : float
+        The element side Delta of that grid.
+    origin : tuple of float
+        (x, y) of the centre of element [0, 0].
+    pressure : numpy.ndarray or None
+        The pressure (compressive > 0) on the same grid as ``contact``, when the scene asks for
+        fields (``Outputs.fields``); None otherwise.
+    displacement : numpy.ndarray or None
+        The surface displacement u (along the approach: u = d - h in contact) on the same grid,
+        when the scene asks for fields; None otherwise.
+    """
 
     approach: float
     force: float
-    contact: np.ndarray  # bool mask on the method's grid, [ix, iy]
+    contact: np.ndarray
     spacing: float
     origin: tuple[float, float]
     pressure: np.ndarray | None = None
@@ -64,10 +97,17 @@ class Snapshot:
 
     @property
     def contact_area(self) -> float:
+        """The area in contact: the elements in contact times Delta^2."""
         return float(np.count_nonzero(self.contact)) * self.spacing**2
 
     def centres(self) -> tuple[np.ndarray, np.ndarray]:
-        """Cell-centre coordinates X, Y on the snapshot's grid, indexed like ``contact``."""
+        """Cell-centre coordinates X, Y on the snapshot's grid, indexed like ``contact``.
+
+        Returns
+        -------
+        X, Y : numpy.ndarray
+            The x and y of each element's centre, of the shape of ``contact``.
+        """
         nx, ny = self.contact.shape
         return np.meshgrid(
             self.origin[0] + self.spacing * np.arange(nx), self.origin[1] + self.spacing * np.arange(ny), indexing="ij"
@@ -78,18 +118,23 @@ class Snapshot:
 class SolverStats:
     """The work a solve did, in counters every method fills (0 where one does not apply).
 
-    linear_solves
+    Each counter is a whole number >= 0; a solver that fills a bad one raises ValueError (a
+    bug, not bad input).
+
+    Attributes
+    ----------
+    linear_solves : int
         Linear systems solved: contact-set solves (Griffith BEM), minimisations (energy BEM),
         factorisations (FEM).
-    linear_iterations
+    linear_iterations : int
         Their iterations: preconditioned CG steps, minimiser iterations.
-    operator_applications
+    operator_applications : int
         Applications of the elastic operator: FFT convolutions, energy-and-gradient evaluations.
-    events
+    events : int
         Steps of the loading path: detachment events (Griffith), continuation steps (energy).
-    unconverged
+    unconverged : int
         Sub-solves that stopped before their tolerance (each also says so in ``messages``).
-    unknowns
+    unknowns : int
         Size of the discrete problem: face elements (BEM) or degrees of freedom (FEM).
     """
 
@@ -113,18 +158,25 @@ class SolverStats:
 
 @dataclass(frozen=True)
 class ErrorBar:
-    """A bound on a result's relative error, ``|value / exact - 1| <= relative``, from an error
-    model that a convergence study showed to cover the method's error.
+    """A bound on a result's relative error, ``abs(value / exact - 1) <= relative``.
 
-    source
+    It comes from an error model that a convergence study showed to cover the method's error.
+
+    Attributes
+    ----------
+    relative : float
+        The bound on the relative error, finite and >= 0.
+    source : str
         The study and the number the bar comes from (a reader can re-run it).
-    role
-        ``"validation"``: the quantity is an independent prediction; ``"calibration"``: the
-        method was fitted to this quantity on this very scene, so matching it validates nothing.
-    interval
+    role : str
+        ``"validation"`` (the default): the quantity is an independent prediction;
+        ``"calibration"``: the method was fitted to this quantity on this very scene, so
+        matching it validates nothing.
+    interval : tuple of float or None
         Where the method also brackets the exact value itself, ``(low, high)`` in the quantity's
         units (the energy BEM's zero-range limit: the two limits its last step allows); the
         exact value lies inside it, which is a sharper claim on one side than ``relative``.
+        None otherwise.
     """
 
     relative: float
@@ -150,23 +202,74 @@ class ErrorBar:
 class Result:
     """What every method returns.
 
-    Besides the curve and the pull-off point: ``stats`` (typed work counters), ``error_bars``
-    (per quantity of :data:`QUANTITIES`, the method's bounded relative error on this scene; a
-    quantity without a bar is not claimed to any accuracy), ``face_area`` (the area of the face as
-    discretised, e.g. a BEM grid's staircase; None when the face is exact), ``discretisation``
-    (``"grid"``: one square-element grid; ``"mesh"``: a finite-element mesh; ``"extrapolated"``:
-    a limit over several discretisations) and ``info`` (method-specific diagnostics, typed per
-    method, for people and JSON; the harness does not read it).
+    A non-finite number among the scalars or on the curve, or a face area that is not positive,
+    raises FloatingPointError on construction: a solver that has lost its answer says so
+    rather than returning NaN.
+
+    Attributes
+    ----------
+    method : str
+        The method's name, as ``crossval`` registers it (``"bem_griffith"``, ``"bem_energy"``,
+        ``"fem_reference"``).
+    pulloff_force : float
+        F_A, the magnitude of the largest tensile force on the pull.
+    pulloff_approach : float
+        The approach at that force.
+    stiffness : float
+        The initial dF/dd of the pressed contact.
+    converged : bool
+        Whether the solve can be trusted to its tolerances: every sub-solve reached its own
+        and the method's conditions held (the energy BEM's process zone resolved, say);
+        ``messages`` says why not.
+    grid_spacing : float
+        The element side Delta, or the characteristic mesh size.
+    curve : Curve or None
+        The force-approach curve, when the scene asks for it (``Outputs.curve``).
+    detached : bool
+        Whether contact was lost within the loading range.
+    detachment_approach : float or None
+        The approach at which the punch came off; None when it did not, or where the method
+        did not locate it.
+    snapshots : tuple of Snapshot
+        The contact set at each approach of ``Outputs.snapshots`` that the loading path passed.
+    last_stable : Snapshot or None
+        The last attached state before detachment, where the method records it.
+    iterations : int
+        The linear or minimiser iterations of the whole solve (0 where not counted).
+    residual : float
+        The worst residual of its sub-solves, in the method's own measure (relative CG
+        residual, scaled projected gradient, relative residual of the saddle-point solve).
+    timings : dict
+        Wall time of each phase of the solve, in seconds.
+    accuracy_estimate : float or None
+        The largest relative error bound, where the method estimates one.
+    messages : tuple of str
+        What a reader must know: unconverged sub-solves, unresolved scales, a punch still
+        attached at the end of the pull.
+    info : Mapping
+        Method-specific diagnostics, typed per method, for people and JSON; the harness does
+        not read it.
+    stats : SolverStats
+        The work counters.
+    error_bars : dict
+        Per quantity of :data:`QUANTITIES`, the method's bounded relative error on this scene
+        (an :class:`ErrorBar`); a quantity without a bar is not claimed to any accuracy.
+    face_area : float or None
+        The area of the face as discretised, e.g. a BEM grid's staircase (> 0); None when the
+        face is exact.
+    discretisation : str
+        ``"grid"``: one square-element grid; ``"mesh"``: a finite-element mesh;
+        ``"extrapolated"``: a limit over several discretisations.
     """
 
     method: str
-    pulloff_force: float  # magnitude of the largest tensile force
-    pulloff_approach: float  # approach at that force
-    stiffness: float  # initial dF/dd of the pressed contact
+    pulloff_force: float
+    pulloff_approach: float
+    stiffness: float
     converged: bool
-    grid_spacing: float  # element side, or characteristic mesh size
+    grid_spacing: float
     curve: Curve | None = None
-    detached: bool = True  # contact lost within the loading range
+    detached: bool = True
     detachment_approach: float | None = None
     snapshots: tuple[Snapshot, ...] = ()
     last_stable: Snapshot | None = None
@@ -178,7 +281,7 @@ class Result:
     # a Mapping, so that each method's TypedDict of diagnostics (GriffithInfo, EnergyInfo...) fits
     info: Mapping[str, Any] = field(default_factory=dict)
     stats: SolverStats = field(default_factory=SolverStats)
-    error_bars: dict = field(default_factory=dict)  # quantity -> ErrorBar
+    error_bars: dict = field(default_factory=dict)
     face_area: float | None = None
     discretisation: str = "grid"
 
@@ -205,10 +308,18 @@ class Result:
 
     @property
     def wall_time_s(self) -> float:
+        """The wall time of the solve, in seconds: the sum of ``timings``."""
         return float(sum(self.timings.values()))
 
     def to_json(self) -> dict:
-        """The fixed JSON keys of ``crossval solve`` (plus a few optional extras)."""
+        """The fixed JSON keys of ``crossval solve`` (plus a few optional extras).
+
+        Returns
+        -------
+        dict
+            The keys of :data:`JSON_KEYS` and every other field, in plain JSON types (lists,
+            floats, None); ``curve`` is None or a dict of its three lists.
+        """
         out = {
             "method": self.method,
             "pulloff_force": self.pulloff_force,

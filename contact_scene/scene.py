@@ -21,7 +21,22 @@ __all__ = ["Indenter", "Adhesion", "Loading", "Outputs", "Scene"]
 
 @dataclass(frozen=True)
 class Indenter:
-    """A rigid punch: its face (where it may touch) and the profile of that face."""
+    """A rigid punch: its face (where it may touch) and the profile of that face.
+
+    Parameters
+    ----------
+    shape : contact_scene.Shape
+        The face: the region of the plane where the punch may touch and adhere.
+    profile : contact_scene.Profile, optional
+        The height of the face above its lowest point; :class:`~contact_scene.Flat` by default.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        ``indenter.shape`` or ``indenter.profile`` for an object of the wrong type;
+        ``indenter.profile_radius`` for a sphere whose radius does not exceed the distance from
+        its apex to the farthest corner of the face's bounding box.
+    """
 
     shape: Shape
     profile: Profile = field(default_factory=Flat)
@@ -44,6 +59,7 @@ class Indenter:
 
     @property
     def is_circular_flat(self) -> bool:
+        """Whether this is Kendall's punch: a circular face with a flat profile (Eqs. 1-8)."""
         return isinstance(self.shape, Circle) and self.profile.is_flat
 
 
@@ -53,6 +69,22 @@ class Adhesion:
 
     ``range`` is the interaction range of a finite-range potential (energy method only);
     ``None`` means the zero-range (JKR / Griffith) limit.
+
+    Parameters
+    ----------
+    work_of_adhesion : float
+        w (an energy per area), >= 0; 0 is a press and pull without adhesion.
+    range : float or None, optional
+        rho, the range of the adhesive potential (a length), > 0; None (the default) for the
+        zero-range limit.
+    potential : str, optional
+        The finite-range potential's form (:class:`bem_energy.Potential`): ``"exponential"``
+        (the default) or ``"maugis_dugdale"``.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming ``adhesion.<field>`` and its allowed values, for a value outside them.
     """
 
     work_of_adhesion: float = real(ge=0)
@@ -65,11 +97,36 @@ class Adhesion:
 
 @dataclass(frozen=True)
 class Loading:
-    """Press (without adhesion, as in the paper) to ``press_approach`` or ``press_force``,
-    then pull.  ``turning_points`` optionally lists approaches at which the pull reverses
-    direction (unload-reload: pull to t1, push back to t2, pull to t3, ...) before the
-    final pull-off.  ``pull_limit`` ends the pull at that approach if the punch is still
-    attached (a case of strong adhesion reported as such)."""
+    """The loading path: press without adhesion, then pull (through optional turning points).
+
+    The press (without adhesion, as in the paper) goes to ``press_approach`` or
+    ``press_force``; a flat face given neither touches with its whole face at d = 0, a curved
+    profile needs one (:class:`Scene` checks).  ``turning_points`` optionally lists approaches
+    at which the pull reverses direction (unload-reload: pull to t1, push back to t2, pull to
+    t3, ...) before the final pull-off.  ``pull_limit`` ends the pull at that approach if the
+    punch is still attached (a case of strong adhesion reported as such).
+
+    Parameters
+    ----------
+    press_approach : float or None, optional
+        The approach d to press to (a length; > 0 presses in), any finite number; None (the
+        default) when pressing to a force or not at all.
+    press_force : float or None, optional
+        The compressive force to press to, >= 0; None (the default) when pressing to an
+        approach or not at all.
+    turning_points : tuple of float, optional
+        Approaches at which the pull reverses direction, in order, each finite; none by
+        default.
+    pull_limit : float or None, optional
+        The approach at which the pull ends if the punch is still attached, < 0; None (the
+        default) for the method's own pull range, which reaches past the expected detachment.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        ``loading.press_force`` when both press_approach and press_force are given; naming
+        ``loading.<field>`` and its allowed range for a value out of that range.
+    """
 
     press_approach: float | None = real(None, optional=True)
     press_force: float | None = real(None, ge=0, optional=True)
@@ -87,9 +144,22 @@ class Loading:
 class Outputs:
     """What the user wants back; methods compute only these.
 
-    ``snapshots``: approaches at which the contact set is recorded (during the pull).
-    ``fields``: pressure and displacement on the grid (or mesh) at those snapshots and at
-    pull-off."""
+    Parameters
+    ----------
+    curve : bool, optional
+        Return the force-approach curve (``Result.curve``); True by default.
+    snapshots : tuple of float, optional
+        Approaches at which the contact set is recorded (during the pull), each finite; none by
+        default.
+    fields : bool, optional
+        Pressure and displacement on the grid (or mesh) at those snapshots and at pull-off;
+        False by default.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming ``outputs.<field>`` and its allowed values, for a value outside them.
+    """
 
     curve: bool = flag(True)
     snapshots: tuple[float, ...] = reals()
@@ -101,6 +171,34 @@ class Outputs:
 
 @dataclass(frozen=True)
 class Scene:
+    """A whole problem: the punch, the half-space, the adhesion, the loading and the outputs.
+
+    Physics only: how finely a method discretises it is that method's settings.
+
+    Parameters
+    ----------
+    indenter : Indenter
+        The rigid punch: face and profile.
+    material : contact_scene.Homogeneous or contact_scene.PowerLawGraded
+        The elastic half-space.
+    adhesion : Adhesion
+        The work of adhesion (and, for the energy method, the potential's range).
+    loading : Loading, optional
+        The press and pull; by default no press (a flat face touches at d = 0) and a pull
+        until the punch detaches.
+    outputs : Outputs, optional
+        What to return; by default the curve, without snapshots or fields.
+    name : str, optional
+        A label for summaries and reports (a scene file's ``name``); empty by default.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        ``indenter``, ``material`` or ``adhesion`` for an object of the wrong type;
+        ``loading.press_approach`` for a curved profile without a press (press_approach > 0
+        or press_force), or with press_approach <= 0.
+    """
+
     indenter: Indenter
     material: Material
     adhesion: Adhesion
@@ -132,8 +230,15 @@ class Scene:
 
     @property
     def effective_modulus(self) -> float:
-        """E* of a homogeneous material; for a graded one the k = 0 equivalent 4 E0 / 3 is not
-        meaningful, so this raises."""
+        """E* = E / (1 - nu^2) of a homogeneous material.
+
+        For a graded one the k = 0 equivalent 4 E0 / 3 is not meaningful, so this raises.
+
+        Raises
+        ------
+        contact_scene.SceneError
+            ``material``, for a graded material.
+        """
         if isinstance(self.material, Homogeneous):
             return self.material.effective_modulus
         raise SceneError("material", "a graded material has no single effective modulus")
