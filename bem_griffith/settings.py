@@ -17,51 +17,75 @@ __all__ = ["GriffithSettings"]
 class GriffithSettings:
     """How the Pohrt-Popov BEM discretises and drives a scene.
 
-    grid
-        Element size (``Grid.elements_per_radius`` across sqrt(A/pi), or ``Grid.spacing``).
-    driver
+    Parameters
+    ----------
+    grid : contact_scene.Grid, optional
+        Element size (``Grid.elements_per_radius`` across sqrt(A/pi), or ``Grid.spacing``);
+        32 elements per radius by default.
+    driver : str, optional
         ``"event"`` (default): with the contact set fixed the state is linear in the approach,
         so the next approach at which an element reaches sigma_c (or a gap closes) is computed
         exactly; the curve does not depend on any step.  ``"fixed_step"``: the paper's driver,
         pulling in steps of ``step``.
-    rtol, maxiter
-        Conjugate-gradient tolerance (relative residual) and iteration cap per contact solve.
-    tie_tolerance
+    step : float or None, optional
+        The approach increment of the fixed-step driver (a length), > 0; required by that
+        driver, unused by the event driver.  None by default.
+    rtol : float, optional
+        Conjugate-gradient tolerance (relative residual) per contact solve, in (0, 1e-2];
+        1e-10 by default.
+    maxiter : int, optional
+        Conjugate-gradient iteration cap per contact solve, >= 1; 2000 by default.
+    tie_tolerance : float, optional
         Elements whose tension is within this relative distance of the largest detach in the
-        same pass, so that symmetric partners (equal stress up to round-off) leave together.
-    stop_when_certainly_detached, certainty_margin
-        Flat faces only: a cascade at fixed approach d ends as soon as |d| exceeds
-        (1 + m) times the upper-bound critical approach (Eq. 14) of the remaining contact
-        area A', m = max(certainty_margin, 2 Delta / sqrt(A'/pi)): no face of that area holds
-        there in the continuum, and the margin covers the discretisation error, which grows
-        like Delta / a.  Saves the tail of the cascade; the pull-off force and the detachment
-        approach are unchanged (tested against the uncut cascade).
-    preconditioner
+        same pass, so that symmetric partners (equal stress up to round-off) leave together;
+        in [0, 1e-2], 1e-6 by default.
+    stop_when_certainly_detached : bool, optional
+        Flat faces only (True by default): a cascade at fixed approach d ends as soon as abs(d)
+        exceeds (1 + m) times the upper-bound critical approach (Eq. 14) of the remaining
+        contact area A', m = max(certainty_margin, 2 Delta / sqrt(A'/pi)): no face of that area
+        holds there in the continuum, and the margin covers the discretisation error, which
+        grows like Delta / a.  Saves the tail of the cascade; the pull-off force and the
+        detachment approach are unchanged (tested against the uncut cascade).
+    certainty_margin : float, optional
+        The smallest margin m of ``stop_when_certainly_detached``, > 0; 0.02 by default.
+    workers : int, optional
+        FFT threads per solve, in [1, 256]; ``halfspace.operator.default_workers()`` (1) by
+        default.
+    max_memory_gb : float, optional
+        Refuse grids whose estimated working memory (in GB) exceeds this, > 0; 8 by default.
+    preconditioner : str, optional
         ``"fourier"`` (default): the inverse of the Fourier symbol of the element lattice
         (``halfspace.kernel.lattice_symbol``), applied on the padded grid in single precision; it cuts
         CG iterations about fivefold at the cost of one extra FFT pair each, also for
         elongated grids and k < 0, where the padded window's own symbol is a poor one.
-    shrink_window
+        ``"none"``: plain conjugate gradients.
+    shrink_window : bool, optional
         ``True`` (default): when the contact set has shrunk into a markedly smaller box of the
         grid (padded FFT size <= 90 %), its solves run on that box's padded grid, with the
         same coefficients C_SS (``HalfSpaceOperator.window``); one full-grid product per solve
         then gives the gaps of the whole face.  Same contact sets, forces to round-off; a
         star's pull-off, whose tips detach first, ran 1.5x faster at 128^2 and 256^2
         (``bench_griffith_pulloff.py``); circles hardly shrink and are unaffected.
-    max_memory_gb
-        Refuse grids whose estimated working memory exceeds this.
-    graded_criterion
+    graded_criterion : str, optional
         Graded bodies only: ``"calibrated"`` (default) divides Eq. 42's sigma_c by r(k), the
         factor by which the flat circle's pull-off under it misses Eq. 39, relative to the
         homogeneous circle on the same grid (``bem_griffith.criterion``, -0.95 <= k <= 0.95);
         ``"eq42"`` keeps the theory sheet's constant (any k).
-    criterion
+    criterion : str, optional
         The detachment rule of the pull.  ``"paper"`` (default): the paper's local criterion,
         an element detaches when its tension reaches sigma_c (Eq. 22; Eq. 42 for graded
         bodies).  ``"stress_intensity"``: a front cell detaches when the stress-intensity
         factor fitted to the pressure 8-24 or more cells behind it reaches sqrt(2 E* w)
         (``bem_griffith.stress_intensity``); it removes the staircase bias of Eq. 22 on
         curved and rotated edges.  Flat punches on homogeneous, non-periodic half-spaces only.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming ``settings.<field>`` and its allowed values, for a value outside them;
+        ``settings.grid`` when ``grid`` is not a :class:`~contact_scene.Grid`;
+        ``settings.step`` for the fixed-step driver without a step; ``settings.criterion``
+        for ``"stress_intensity"`` on a periodic grid.
     """
 
     grid: Grid = field(default_factory=lambda: Grid(elements_per_radius=32))
