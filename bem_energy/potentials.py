@@ -38,9 +38,26 @@ PROCESS_ZONE_ELEMENTS: dict[str, tuple[float, float]] = {"exponential": (1.0, 2.
 
 @dataclass(frozen=True)
 class Potential:
-    """``kind``: ``"exponential"`` phi = -w exp(-g/rho) (smooth, concave) or
-    ``"maugis_dugdale"`` phi = -w max(0, 1 - g/rho) (constant stress w/rho up to rho;
-    concave, with a kink at g = rho)."""
+    """An adhesive potential phi(g): energy per area of the gap g >= 0, phi(0) = -w.
+
+    Parameters
+    ----------
+    work : float
+        w, the work of adhesion (an energy per area), >= 0.
+    range : float
+        rho, the range (a length), > 0.
+    kind : str, optional
+        ``"exponential"`` (default) phi = -w exp(-g/rho) (smooth, concave) or
+        ``"maugis_dugdale"`` phi = -w max(0, 1 - g/rho) (constant stress w/rho up to rho;
+        concave, with a kink at g = rho).
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming the scene's field the parameter comes from (``adhesion.work_of_adhesion``,
+        ``adhesion.range``, ``adhesion.potential``) and its allowed values, for a value
+        outside them.
+    """
 
     # named as the scene's adhesion fields they come from
     work: float = real(ge=0, name="adhesion.work_of_adhesion")
@@ -51,20 +68,56 @@ class Potential:
         check_fields(self, "adhesion")
 
     def energy(self, g: np.ndarray) -> np.ndarray:
+        """phi(g), the adhesive energy per area (from -w at contact to 0 far away).
+
+        Parameters
+        ----------
+        g : numpy.ndarray
+            The gap, >= 0 (a length).
+
+        Returns
+        -------
+        numpy.ndarray
+            phi at each gap, in [-w, 0].
+        """
         w, r = self.work, self.range
         if self.kind == "exponential":
             return -w * np.exp(-g / r)
         return -w * np.maximum(0.0, 1.0 - g / r)
 
     def stress(self, g: np.ndarray) -> np.ndarray:
-        """phi'(g): the attractive stress pulling the surface back toward the punch."""
+        """phi'(g): the attractive stress pulling the surface back toward the punch.
+
+        Parameters
+        ----------
+        g : numpy.ndarray
+            The gap, >= 0 (a length).
+
+        Returns
+        -------
+        numpy.ndarray
+            phi' at each gap, in [0, w/rho] (a stress).
+        """
         w, r = self.work, self.range
         if self.kind == "exponential":
             return (w / r) * np.exp(-g / r)
         return np.where(g < r, w / r, 0.0)
 
     def curvature(self, g: np.ndarray) -> np.ndarray:
-        """phi''(g) (<= 0: the potential is concave)."""
+        """phi''(g) (<= 0: the potential is concave).
+
+        Maugis-Dugdale's is 0 (its kink at g = rho is left out).
+
+        Parameters
+        ----------
+        g : numpy.ndarray
+            The gap, >= 0 (a length).
+
+        Returns
+        -------
+        numpy.ndarray
+            phi'' at each gap, in [-w/rho^2, 0].
+        """
         w, r = self.work, self.range
         if self.kind == "exponential":
             return -(w / r**2) * np.exp(-g / r)
@@ -77,7 +130,30 @@ def process_zone_length(*, modulus: float, work: float, range: float, exponent: 
     On a graded half-space (surface Green's function A_k P / r^(1+k)) a cohesive zone of
     length l under the stress w / rho opens by about A_k (w / rho) l^(1-k); setting that to
     rho gives l_c^(1-k) = E_k rho^2 / w with E_k = 1 / (pi A_k) (``modulus``, units of
-    stress / length^k; E* at k = 0, where this is the homogeneous l_c)."""
+    stress / length^k; E* at k = 0, where this is the homogeneous l_c).
+
+    Parameters
+    ----------
+    modulus : float
+        E_k = 1 / (pi A_k), > 0 (:func:`process_zone_modulus`; E* of a homogeneous body).
+    work : float
+        w, the work of adhesion (an energy per area).
+    range : float
+        rho, the potential's range (a length), > 0 when ``work`` > 0.
+    exponent : float, optional
+        k of the Green's function, in (-1, 1) (:func:`process_zone_exponent`); 0 (homogeneous)
+        by default.
+
+    Returns
+    -------
+    float
+        l_c (a length); infinite when ``work`` <= 0.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        ``adhesion.range`` for range <= 0 with work > 0.
+    """
     if work <= 0:
         return float("inf")
     if range <= 0:

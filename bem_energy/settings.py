@@ -14,13 +14,17 @@ __all__ = ["EnergySettings", "ZeroRangeSettings"]
 class EnergySettings:
     """How one finite-range pull-off is discretised and solved.
 
-    grid
-        Element size, as for the Griffith solver.  The process zone l_c = E* rho^2 / w needs
-        a potential's fewest elements (``bem_energy.potentials.PROCESS_ZONE_ELEMENTS``: one
-        for the exponential potential, 16 for Maugis-Dugdale); a coarser grid is run, but
-        the result is not converged and its messages say which resolution suffices.
-        ``bem_energy.finite_range_grid`` picks a grid that resolves it.
-    minimiser
+    Parameters
+    ----------
+    grid : contact_scene.Grid, optional
+        Element size, as for the Griffith solver (32 elements per radius by default).  The
+        process zone l_c = E* rho^2 / w needs a potential's fewest elements
+        (``bem_energy.potentials.PROCESS_ZONE_ELEMENTS``: one for the exponential potential,
+        16 for Maugis-Dugdale); a coarser grid is run, but the result is not converged and its
+        messages say which resolution suffices.  ``bem_energy.finite_range_grid`` picks a grid
+        that resolves it.  A periodic grid is refused when solving: the method models the
+        infinite half-space.
+    minimiser : str, optional
         ``"pk"`` (default): a projected, Fourier-preconditioned conjugate-gradient iteration
         in the style of Polonsky-Keer and Rey et al.  ``"lbfgsb"``: scipy's bound-constrained
         L-BFGS-B on the surface displacement of the zero-padded grid (bounds = the hard wall on
@@ -28,7 +32,29 @@ class EnergySettings:
         Newton's method on dense face matrices with the contact set from a convex QP solved
         by cvxpy, for small grids only (``max_face_elements_cvxpy``); a whole pull-off agrees
         with ``"pk"`` to the minimisers' tolerance (tests/test_energy_finite_range.py).
-    kernel
+    steps : int, optional
+        Continuation steps over the default pull range, in [2, 100000]; 40 by default.  The
+        snap-off is then located by bisection to ``snap_tolerance``.
+    snap_tolerance : float, optional
+        The bisection's tolerance on the snap-off approach, relative to abs(d_c) of the circle
+        of the face's area (Eq. 14; Eq. 38 graded) plus the range rho, in (0, 0.1]; 1e-3 by
+        default (it is also Brent's tolerance on a smooth maximum).  1e-3 against 1e-4 took the
+        256 x 256 circle from 27 s to 18 s for a change of 4e-8 in F_A (a smooth maximum,
+        refined by Brent) and moved the suite's fold-limited cases by at most 3e-4
+        (benchmarks/bench_energy.py, crossval regress).
+    gtol : float, optional
+        Stop when the projected gradient of the scaled energy is below this (scaled so that
+        the adhesive stress and the elastic stiffness of one element are of order one), in
+        (0, 1e-2]; 1e-6 by default.
+    max_iterations : int, optional
+        Iteration cap of each minimisation, >= 1; 50000 by default.
+    memory : int, optional
+        L-BFGS-B's correction pairs (also sizing the memory estimate of the grid), in [1, 100];
+        10 by default.
+    max_face_elements_cvxpy : int, optional
+        The most face elements the ``"cvxpy"`` minimiser accepts (a larger face is refused when
+        solving), >= 1; 700 by default.
+    kernel : str, optional
         The discretisation of the half-space.  ``"collocation"`` (default): point-collocated
         Boussinesq coefficients (A_k Delta^2 / r^(1+k) for a graded body) with the lattice-
         consistent self term (``halfspace.collocation``), a discretisation of its own, so that
@@ -40,26 +66,24 @@ class EnergySettings:
         -0.12/N (Love) at the raster's area; on a common grid Love's squares are stiffer by
         0.045/N to 0.069/N over the faces measured (benchmarks/study_halfspace_kernels.py,
         tests/test_halfspace.py).
-    steps
-        Continuation steps over the default pull range; the snap-off is then located by
-        bisection to ``snap_tolerance`` (relative to the Kendall approach of the face).
-        1e-3 against 1e-4 took the 256 x 256 circle from 27 s to 18 s for a change of 4e-8
-        in F_A (a smooth maximum, refined by Brent) and moved the suite's fold-limited
-        cases by at most 3e-4 (benchmarks/bench_energy.py, crossval regress).
-    locate_detachment
+    locate_detachment : bool, optional
         Bisect the snap-off to ``snap_tolerance`` even once the recorded attached states
-        bracket a smooth force maximum, for the detachment approach and the last stable state.
-        False: stop there (the detachment approach is then known to the bracket's width only);
-        the force maximum is refined by Brent either way, and a fold is still bisected.
-    stop_peeling_trials
+        bracket a smooth force maximum, for the detachment approach and the last stable state
+        (True, the default).  False: stop there (the detachment approach is then known to the
+        bracket's width only); the force maximum is refined by Brent either way, and a fold is
+        still bisected.
+    stop_peeling_trials : bool, optional
         Stop a pulling step whose contact falls below (1 - s) of its most during the
         minimisation, s = max(0.1, 10 l_c / a), and converge its detached state from U = 0
         (projected CG only; see ``Equilibria.pulling_trial``): a detaching minimisation
         otherwise creeps for about a hundred iterations and then peels one ring of cells per
-        iteration.
-    gtol
-        Stop when the projected gradient of the scaled energy is below this (scaled so that
-        the adhesive stress and the elastic stiffness of one element are of order one).
+        iteration.  True by default.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming ``settings.<field>`` and its allowed values, for a value outside them;
+        ``settings.grid`` when ``grid`` is not a :class:`~contact_scene.Grid`.
     """
 
     grid: Grid = field(default_factory=lambda: Grid(elements_per_radius=32))
@@ -93,17 +117,46 @@ def sequence_energy_settings() -> EnergySettings:
 
 @dataclass(frozen=True)
 class ZeroRangeSettings:
-    """The JKR (zero-range) limit: finite-range runs at process zones l_c = r * a
-    (a = sqrt(A/pi)) for r in ``ratios``, each on a grid with ``elements_per_process_zone``
-    elements per l_c (and at least ``minimum_elements_per_radius``), extrapolated to
-    l_c -> 0 by a least-squares fit of F0 + c l_c^p (see :func:`bem_energy.richardson`):
-    p fitted when ``rate`` is None (the default; needs three ratios), else fixed.
+    """The JKR (zero-range) limit of the energy BEM: finite-range runs extrapolated to l_c -> 0.
+
+    Finite-range runs at process zones l_c = r * a (a = sqrt(A/pi)) for r in ``ratios``, each
+    on a grid with ``elements_per_process_zone`` elements per l_c (and at least
+    ``minimum_elements_per_radius``), are extrapolated to l_c -> 0 by a least-squares fit of
+    F0 + c l_c^p (see :func:`bem_energy.richardson`): p fitted when ``rate`` is None (the
+    default; needs three ratios), else fixed.
 
     The default ratios reach l_c = 0.01 a: the circle's and the square's local rates still
     change below 0.04 a (benchmarks/study_energy_zero_range.py), and sequences stopping there
-    missed the square's limit by 5 %.  ``normalise_area`` scales each run's force to the
-    nominal face area (the staircase area changes from grid to grid).  ``energy``: the
-    settings of each range (:func:`sequence_energy_settings` by default)."""
+    missed the square's limit by 5 %.
+
+    Parameters
+    ----------
+    ratios : tuple of float, optional
+        The process-zone ratios l_c / a, each in (0, 1], at least two and distinct (three with
+        a fitted rate); stored in decreasing order.  (0.08, 0.04, 0.02, 0.01) by default.
+    elements_per_process_zone : float, optional
+        Elements per l_c of each run's grid, in [0.25, 64]; 2 by default.
+    rate : float or None, optional
+        The exponent p of the fit, in (0, 4]; None (the default) to fit it.
+    minimum_elements_per_radius : float, optional
+        The fewest elements per radius a of any run's grid, in [4, 1e4]; 24 by default.
+    potential : str, optional
+        The finite-range potential of the runs, ``"exponential"`` (default) or
+        ``"maugis_dugdale"``.
+    normalise_area : bool, optional
+        Scale each run's force to the nominal face area (the staircase area changes from grid
+        to grid); True by default.
+    energy : EnergySettings, optional
+        The settings of each range (:func:`sequence_energy_settings` by default); their grid
+        is replaced by each run's.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming ``settings.<field>`` and its allowed values, for a value outside them;
+        ``settings.ratios`` for fewer than two distinct ratios, or fewer than three with a
+        fitted rate.
+    """
 
     ratios: tuple[float, ...] = reals((0.08, 0.04, 0.02, 0.01), gt=0, le=1)
     elements_per_process_zone: float = real(2.0, ge=0.25, le=64)
@@ -115,12 +168,27 @@ class ZeroRangeSettings:
 
     @classmethod
     def coarse(cls, elements_per_process_zone: float = 1.0, **kw) -> ZeroRangeSettings:
-        """The cheap sequence the harness sweeps (seconds, not minutes): l_c / a = 0.32 ... 0.04
-        with the rate fixed at 1/2, which the circle follows there (within 0.1 % of Kendall).
+        """The cheap sequence the harness sweeps (seconds, not minutes): l_c / a = 0.32 ... 0.04.
+
+        The rate is fixed at 1/2, which the circle follows there (within 0.1 % of Kendall).
         Faces with corners converge faster than sqrt(l_c) below 0.04 a, so this sequence
         overshoots their limit: 0.935 and 0.864 of Eq. 13 for the square and the triangle
         against 0.881 and 0.810 from the default sequence
-        (benchmarks/study_energy_zero_range.py)."""
+        (benchmarks/study_energy_zero_range.py).
+
+        Parameters
+        ----------
+        elements_per_process_zone : float, optional
+            Elements per l_c of each run's grid, in [0.25, 64]; 1 by default.
+        **kw
+            Other fields of :class:`ZeroRangeSettings`, overriding the sequence's
+            (``ratios=(0.32, 0.16, 0.08, 0.04)``, ``rate=0.5``) where given.
+
+        Returns
+        -------
+        ZeroRangeSettings
+            The coarse sequence's settings.
+        """
         kw.setdefault("ratios", (0.32, 0.16, 0.08, 0.04))
         kw.setdefault("rate", 0.5)
         return cls(elements_per_process_zone=elements_per_process_zone, **kw)
