@@ -53,28 +53,37 @@ log = logging.getLogger("fem_reference")
 class FemSettings:
     """Mesh and element settings.
 
-    grading
+    Parameters
+    ----------
+    grading : float, optional
         Element diameter at most ``grading`` x its distance from the punch edge (smaller is
-        finer); ``crossval solve --resolution N`` sets grading = 1/N.  At most 2 for a
-        homogeneous body (see :func:`build`).  For a graded body
-        (k > 0) the mesh is a tensor product whose cells grow by the factor 1 + grading away
-        from the edge line and the surface (see :func:`fem_reference.model.build_tensor_mesh`).
-    order
-        Polynomial degree of the displacement (Taylor-Hood: pressure one lower); 4 by default:
-        the convergence study (benchmarks/study_fem.py) reaches 1e-5 at a fraction of the
-        cost of degree 2.
-    domain_radius
-        Truncation, in punch radii: the far boundary is clamped there (error about a/L).
-    h_min
-        Smallest element at the edge, in punch radii.
-    compliance_check
+        finer), in [0.05, 4]; 1 by default.  ``crossval solve --resolution N`` sets
+        grading = 1/N.  At most 2 for a homogeneous body (see :func:`build`; a larger one is
+        refused when solving).  For a graded body (k > 0) the mesh is a tensor product whose
+        cells grow by the factor 1 + grading away from the edge line and the surface (see
+        :func:`fem_reference.model.build_tensor_mesh`).
+    order : int, optional
+        Polynomial degree of the displacement (Taylor-Hood: pressure one lower), in [2, 4]; 4
+        by default: the convergence study (benchmarks/study_fem.py) reaches 1e-5 at a fraction
+        of the cost of degree 2.
+    domain_radius : float, optional
+        Truncation, in punch radii, in [16, 2^40]; 2^20 by default: the far boundary is clamped
+        there (error about a/L).
+    h_min : float, optional
+        Smallest element at the edge, in punch radii, in [1e-12, 0.1]; 1e-5 by default.
+    vce_radius : float, optional
+        r1 of the virtual crack extension, in punch radii, in [0.01, 0.5]; 0.25 by default:
+        nodes within r1 of the punch edge slide radially with the edge, blending to rest at
+        2 r1.
+    compliance_check : bool, optional
         Also compute dK/da by re-solving on the two moved meshes (doubles the cost); it
         agrees with the stiffness derivative to about 1e-6 (graded k = 0.25, grading 2), the
-        precision of two solves' difference over 2e-4 a.
-    fields_path
+        precision of two solves' difference over 2e-4 a.  False by default.
+    fields_path : str or None, optional
         Where to write the displacement and pressure at pull-off (VTU or XDMF, by meshio)
-        when the scene asks for fields.
-    kernels
+        when the scene asks for fields; None by default (then a scene asking for fields is
+        refused when solving).
+    kernels : str, optional
         ``"vectorised"`` (default): element matrices from batched products of precomputed
         strains, a nested-dissection elimination order and diagonal pivots
         (:func:`fem_reference.model.nested_dissection`).  ``"scikit-fem"``: scikit-fem's
@@ -82,6 +91,11 @@ class FemSettings:
         plain statement of the same discretisation, several times slower; both give the same
         matrices to rounding and the same answers to the solve's precision
         (``benchmarks/bench_fem.py`` runs them side by side).
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming ``fem.<field>`` and its allowed values, for a value outside them.
     """
 
     grading: float = real(1.0, ge=0.05, le=4.0)
@@ -99,19 +113,51 @@ class FemSettings:
 
 @dataclass(frozen=True, eq=False)
 class UnitSolution:
-    """Dimensionless results for a = 1, unit modulus scale, d = 1."""
+    """Dimensionless results for a = 1, unit modulus scale, d = 1.
 
-    stiffness: float  # K^
-    stiffness_reaction: float  # K^ from the reaction force (a check on the energy form)
-    dK_vce: float  # dK^/da by the stiffness derivative
-    dK_compliance: float | None  # dK^/da by re-solving on moved meshes (when asked)
+    A scene's values follow by scaling (see the module): K = S a K^, dK/da = S dK^/da, with
+    S = E (homogeneous) or E0 (a/c0)^k (graded).
+
+    Attributes
+    ----------
+    stiffness : float
+        K^, from the energy form x^T M x.
+    stiffness_reaction : float
+        K^ from the reaction force on the punch (a check on the energy form).
+    dK_vce : float
+        dK^/da by the stiffness derivative (virtual crack extension); NaN when the energy
+        release rate was not asked for.
+    dK_compliance : float or None
+        dK^/da by re-solving on the two moved meshes, when ``FemSettings.compliance_check``
+        asks for it; None otherwise.
+    dofs : int
+        Degrees of freedom of the saddle-point system.
+    elements : int
+        Triangles of the mesh.
+    timings : dict
+        Wall time of each phase (mesh, solve, energy release, compliance check), in seconds.
+    mesh : skfem.MeshTri or None
+        The mesh, kept when the energy release rate was computed (for the error estimate and
+        the fields); None otherwise.
+    model : fem_reference.model.Model or None
+        The assembled model, likewise.
+    x : numpy.ndarray or None
+        The solution vector (displacement, then pressure degrees of freedom), likewise.
+    residual : float
+        The largest relative residual of the linear solves.
+    """
+
+    stiffness: float
+    stiffness_reaction: float
+    dK_vce: float
+    dK_compliance: float | None
     dofs: int
     elements: int
     timings: dict
     mesh: MeshTri | None = None
     model: Model | None = None
     x: np.ndarray | None = None
-    residual: float = 0.0  # the largest relative residual of the linear solves
+    residual: float = 0.0
 
 
 def write_fields(path: str, u: UnitSolution, *, radius: float, approach: float, modulus_scale: float) -> None:
@@ -176,7 +222,30 @@ def build(material: Material, settings: FemSettings) -> MeshTri:
 def unit_solution(
     material: Material, settings: FemSettings, *, energy_release: bool = True, mesh: MeshTri | None = None
 ) -> UnitSolution:
-    """The unit problem on ``mesh`` (default: :func:`build` of ``settings``)."""
+    """The unit problem on ``mesh`` (default: :func:`build` of ``settings``).
+
+    Parameters
+    ----------
+    material : fem_reference.model.Material
+        The dimensionless material: exponent k in [0, 1) and Poisson's ratio.
+    settings : FemSettings
+        Mesh, degree and kernels.
+    energy_release : bool, optional
+        Also compute dK^/da by the stiffness derivative (and by the compliance derivative when
+        ``settings.compliance_check``); True by default.  False gives the stiffness alone.
+    mesh : skfem.MeshTri or None, optional
+        The mesh to solve on; by default :func:`build` of ``settings``.
+
+    Returns
+    -------
+    UnitSolution
+        The dimensionless stiffness, its derivative and the solve's residual.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        ``fem.grading`` when building the mesh of a homogeneous body with grading > 2.
+    """
     t0 = time.perf_counter()
     log.info("meshing (grading %g)", settings.grading)
     mesh = build(material, settings) if mesh is None else mesh
@@ -311,6 +380,19 @@ def _material(scene: Scene) -> tuple[Material, float]:
 
 
 def applies(scene: Scene) -> str | None:
+    """Whether the FEM can represent a scene, and if not why.
+
+    Parameters
+    ----------
+    scene : contact_scene.Scene
+        The scene.
+
+    Returns
+    -------
+    str or None
+        None for a circular flat punch on a homogeneous body or a graded one with
+        0 <= k < 1 (nu = 1/(2+k) > 1/2 for k < 0 is not positive definite); else the reason.
+    """
     if not isinstance(scene.indenter.shape, Circle) or not scene.indenter.profile.is_flat:
         return "fem_reference models circular flat punches only (axisymmetric)"
     m = scene.material
@@ -320,7 +402,36 @@ def applies(scene: Scene) -> str | None:
 
 
 def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -> Result:
-    """Stiffness, energy release rate and Griffith pull-off of a circular flat punch."""
+    """Stiffness, energy release rate and Griffith pull-off of a circular flat punch.
+
+    Griffith's condition G = w (Eqs. 4-6, 36-40) with the energy release rate from the
+    stiffness derivative gives d_c = -sqrt(4 pi a w / K'(a)) and F_A = K(a) abs(d_c).
+
+    Parameters
+    ----------
+    scene : contact_scene.Scene
+        A scene :func:`applies` admits.
+    settings : FemSettings or None, optional
+        Mesh and element settings; ``FemSettings()`` by default.
+    callback : callable, optional
+        Called once as ``callback(approach, force, contact_area)`` with the pull-off state
+        (d_c, -F_A, pi a^2).
+
+    Returns
+    -------
+    contact_scene.Result
+        ``discretisation="mesh"``, with error bars on stiffness, pull-off force and approach
+        (:func:`error_estimates`); ``converged`` False, with a message, when the saddle-point
+        solve did not reach its tolerance.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        ``indenter.shape`` for a face that is not a circle with a flat profile;
+        ``material.exponent`` for a graded body with k < 0; ``fem.grading`` for a homogeneous
+        body with grading > 2; ``fem.fields_path`` when the scene asks for fields and the
+        settings give no path.
+    """
     why = applies(scene)
     if why:
         raise SceneError("indenter.shape" if "circular" in why else "material.exponent", why)
@@ -418,6 +529,27 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
 
 
 def solve_with_resolution(scene: Scene, resolution: float | None, *, callback=None) -> Result:
-    """Registry entry: ``resolution`` N sets grading = 1/N (default grading 1)."""
+    """Registry entry: ``resolution`` N sets grading = 1/N (default grading 1).
+
+    Parameters
+    ----------
+    scene : contact_scene.Scene
+        A scene :func:`applies` admits.
+    resolution : float or None
+        N, with grading = 1/N in [0.05, 4] (at most 2 for a homogeneous body), so N in
+        [0.25, 20] ([0.5, 20] homogeneous); None for the default ``FemSettings()``.
+    callback : callable, optional
+        Passed on to :func:`solve`.
+
+    Returns
+    -------
+    contact_scene.Result
+        As :func:`solve`.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        ``fem.grading`` for N outside that range; as :func:`solve` otherwise.
+    """
     s = FemSettings() if resolution is None else FemSettings(grading=1.0 / resolution)
     return solve(scene, s, callback=callback)
