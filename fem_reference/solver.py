@@ -551,5 +551,7 @@ def solve_with_resolution(scene: Scene, resolution: float | None, *, callback=No
     contact_scene.SceneError
         ``fem.grading`` for N outside that range; as :func:`solve` otherwise.
     """
+    if resolution is not None and not resolution > 0:  # 1/N: zero or negative has no grading
+        raise SceneError("fem.grading", f"resolution N = 1/grading must be > 0 (got {resolution!r})")
     s = FemSettings() if resolution is None else FemSettings(grading=1.0 / resolution)
     return solve(scene, s, callback=callback)

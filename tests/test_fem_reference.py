@@ -150,6 +150,10 @@ def test_refuses_what_it_cannot_represent():
     # the isotropic mesh leaves the punch edge unresolved beyond grading 2 (K 1.4e-2 off at 3)
     with pytest.raises(cs.SceneError, match="fem.grading"):
         fr.solve(scene(cs.Homogeneous(1.0, 0.3)), fr.FemSettings(grading=3.0))
+    # the registry's resolution is 1/grading: zero has no grading (was a ZeroDivisionError)
+    for bad in (0.0, -1.0):
+        with pytest.raises(cs.SceneError, match="fem.grading"):
+            fr.solve_with_resolution(scene(cs.Homogeneous(1.0, 0.3)), bad)
 
 
 def test_fields_only_when_asked(tmp_path):
