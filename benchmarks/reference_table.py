@@ -482,12 +482,14 @@ def write(cache: Path, criterion: str) -> None:
     FACES_JSON.write_text(json.dumps(doc, indent=1) + "\n")
     print(f"wrote {FACES_JSON.relative_to(ROOT)}")
 
+    other_criterion = "paper" if criterion != "paper" else "stress_intensity"
     headers = [
         "face",
+        "Griffith grids N",
         f"F_A/F_A,upper Griffith ({criterion})",
         "F_A/F_A,upper energy BEM",
         "agree",
-        "F_A/F_A,upper Griffith (other criterion)",
+        f"F_A/F_A,upper Griffith ({other_criterion})",
         "d(F_A)/d_c,upper",
         "K/(2E* sqrt(A/pi)) Griffith",
         "K/(2E* sqrt(A/pi)) energy BEM",
@@ -498,9 +500,11 @@ def write(cache: Path, criterion: str) -> None:
         f = qs["pulloff_force"]
         other = next((v for k, v in f.items() if k.startswith("bem_griffith_")), None)
         agree = "-" if "agreement" not in f else ("yes" if f["agreement"] else f"no ({100 * f['relative_gap']:+.2f} %)")
+        sweep = entry["griffith"].get(criterion)
         rows.append(
             [
                 face,
+                ", ".join(f"{n:g}" for n in sweep["resolutions"]) if sweep else "-",
                 fmt(f.get("bem_griffith")),
                 fmt(f.get("bem_energy")),
                 agree,
@@ -515,7 +519,8 @@ def write(cache: Path, criterion: str) -> None:
             errs = w["errors"]
             rows.append(
                 [
-                    f"check: Kendall circle ({c}), N = {w['resolutions'][0]:g}...{w['resolutions'][-1]:g}",
+                    f"check: Kendall circle ({c.split(',')[0]})",
+                    ", ".join(f"{n:g}" for n in w["resolutions"]),
                     f"error {100 * errs['pulloff_force']['error']:+.3f} %",
                     "",
                     "",

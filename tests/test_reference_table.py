@@ -1,0 +1,237 @@
+"""The reference table of the non-circular faces (``crossval/references/faces.json``).
+
+Written by ``benchmarks/reference_table.py``: per face, F_A / F_A,upper, the approach at F_A
+and the stiffness from the Griffith BEM extrapolated in 1/N and from the energy BEM's
+zero-range limit, each with a relative bar.  Checked here without solving anything: every
+bar is a positive finite number, F_A lies between the bounds of Eqs. 13 and 18, the square
+and the same square at 45 degrees to the grid agree (the physics does not see the grid), and
+two methods that disagree beyond their combined bars say so (``agreement: false`` with the
+gap) instead of passing silently.  Each check is also run on a broken copy of the table (a
+mutant) to show that it can fail.  The slow test re-runs the coarsest Griffith points.
+"""
+
+from __future__ import annotations
+
+import copy
+import importlib.util
+import json
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from contact_scene import theory as T
+
+ROOT = Path(__file__).resolve().parents[1]
+FACES_JSON = ROOT / "crossval" / "references" / "faces.json"
+FACES = ("square", "triangle", "rectangle", "square_45", "two_circles", "star")
+QUANTITIES = ("pulloff_force", "pulloff_approach", "stiffness")
+METHODS = ("bem_griffith", "bem_energy")
+
+
+def _load_script():
+    sys.path.insert(0, str(ROOT / "benchmarks"))  # the script imports its sibling _timing
+    spec = importlib.util.spec_from_file_location("reference_table", ROOT / "benchmarks" / "reference_table.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+@pytest.fixture(scope="module")
+def table() -> dict:
+    return json.loads(FACES_JSON.read_text())
+
+
+def values(doc: dict):
+    """Every (face, quantity, method, entry) with a value in the table."""
+    for face, entry in doc["faces"].items():
+        for q, qentry in entry["quantities"].items():
+            for key, v in qentry.items():
+                if isinstance(v, dict) and "value" in v:
+                    yield face, q, key, v
+
+
+def bar_problems(doc: dict) -> list[str]:
+    return [
+        f"{face} {q} {key}: bar {v['relative_bar']!r}"
+        for face, q, key, v in values(doc)
+        if not (isinstance(v["relative_bar"], float) and math.isfinite(v["relative_bar"]) and v["relative_bar"] > 0)
+        or not math.isfinite(v["value"])
+    ]
+
+
+def bound_problems(doc: dict) -> list[str]:
+    """F_A / F_A,upper outside [F_A,lower / F_A,upper, 1] (Eqs. 18 and 13), the lower bound
+    recomputed from the scene's incircle, each value allowed its bar."""
+    script = _load_script()
+    out = []
+    for face, q, key, v in values(doc):
+        if q != "pulloff_force":
+            continue
+        scene = script.face_scene(face)
+        E, w, shape = scene.material.effective_modulus, scene.adhesion.work_of_adhesion, scene.indenter.shape
+        low = T.lower_bound_force(E_star=E, work=w, incircle_radius=shape.incircle().radius) / T.upper_bound_force(
+            E_star=E, work=w, area=shape.area
+        )
+        slack = v["relative_bar"] * v["value"]
+        if not low - slack <= v["value"] <= 1 + slack:
+            out.append(f"{face} {key}: {v['value']:.4f} outside [{low:.4f}, 1]")
+    return out
+
+
+def rotation_problems(doc: dict) -> list[str]:
+    """The square and the square at 45 degrees, each quantity and method, outside their combined bars."""
+    a, b = doc["faces"]["square"]["quantities"], doc["faces"]["square_45"]["quantities"]
+    out = []
+    for q in QUANTITIES:
+        for m in METHODS:
+            if m in a[q] and m in b[q]:
+                x, y = a[q][m], b[q][m]
+                combined = x["relative_bar"] * abs(x["value"]) + y["relative_bar"] * abs(y["value"])
+                if abs(x["value"] - y["value"]) > combined:
+                    out.append(f"{q} {m}: {x['value']:.5f} vs {y['value']:.5f} (combined bar {combined:.2g})")
+    return out
+
+
+def agreement_problems(doc: dict) -> list[str]:
+    """Where both methods give a value: the flag must match the gap against the combined bars,
+    and a disagreement must carry its gap."""
+    out = []
+    for face, entry in doc["faces"].items():
+        for q, qe in entry["quantities"].items():
+            if not all(m in qe for m in METHODS):
+                continue
+            g, e = qe["bem_griffith"], qe["bem_energy"]
+            gap = e["value"] - g["value"]
+            combined = g["relative_bar"] * abs(g["value"]) + e["relative_bar"] * abs(e["value"])
+            agree = abs(gap) <= combined
+            if qe.get("agreement") is not agree:
+                out.append(
+                    f"{face} {q}: agreement flag {qe.get('agreement')!r}, measured gap {gap:+.4g} vs {combined:.3g}"
+                )
+            elif not agree and not math.isclose(qe.get("gap", math.nan), gap, rel_tol=1e-9):
+                out.append(f"{face} {q}: disagreement without its gap ({qe.get('gap')!r}, measured {gap:+.4g})")
+    return out
+
+
+def test_table_is_well_formed(table):
+    """Every face is there; a value missing from it is declared missing, with the reason."""
+    for key in ("command", "revision", "date", "griffith_procedure", "energy_procedure", "check", "faces"):
+        assert key in table, key
+    assert set(table["faces"]) == set(FACES)
+    for face, entry in table["faces"].items():
+        declared = entry.get("not_computed", {})
+        assert not declared or (declared["methods"] and declared["why"]), face
+        assert set(entry["quantities"]) == set(QUANTITIES), face
+        for q, qe in entry["quantities"].items():
+            ref = qe.get("reference")
+            if ref is None:
+                assert "bem_griffith" not in qe and "bem_energy" not in qe, f"{face} {q}: values but no reference"
+                assert f"bem_griffith ({table['reference_criterion']})" in declared.get("methods", ()), face
+                continue
+            assert ref["method"] in METHODS or (ref["method"].startswith("the interval") and not qe["agreement"])
+        for criterion, sweep in entry["griffith"].items():
+            assert len(sweep["resolutions"]) >= 4, f"{face} {criterion}: fewer than four grids behind the 1/N limit"
+            assert sweep["all_converged"], f"{face} {criterion}"
+        if entry["energy"] is None:
+            assert "bem_energy" in declared.get("methods", ()), face
+        else:
+            assert entry["energy"]["converged"], face
+
+
+def test_bars_are_positive_and_finite(table):
+    assert not bar_problems(table)
+    broken = copy.deepcopy(table)
+    broken["faces"]["square"]["quantities"]["stiffness"]["reference"]["relative_bar"] = math.nan
+    assert bar_problems(broken)
+
+
+def test_pulloff_between_the_bounds(table):
+    assert not bound_problems(table)
+    broken = copy.deepcopy(table)
+    broken["faces"]["triangle"]["quantities"]["pulloff_force"]["reference"]["value"] = 1.02
+    assert bound_problems(broken)
+
+
+def check_problems(doc: dict) -> list[str]:
+    """The test of the procedure on Kendall's circle (every quantity exactly 1), recomputed from
+    its stored points: each window's limit is the least-squares q0 + c/N over its finest four
+    grids, the bias the largest |q0 - 1| over the windows, and every Griffith bar covers the
+    bias of its criterion (the part of the error no extrapolation in N removes)."""
+    out = []
+    for key, check in doc["check"].items():
+        points = {p["N"]: p["normalised"] for p in check["points"]}
+        if len(check["windows"]) < 2:
+            out.append(f"{key}: the bias is taken over a single window of grids")
+        for q, bias in check["bias"].items():
+            errors = []
+            for w in check["windows"]:
+                N = np.array(sorted(w["resolutions"])[-4:], float)
+                y = np.array([points[n][q] for n in sorted(w["resolutions"])[-4:]])
+                q0 = np.linalg.lstsq(np.c_[np.ones_like(N), 1 / N], y, rcond=None)[0][0]
+                errors.append(abs(q0 - 1))
+            if not math.isclose(bias, max(errors), rel_tol=1e-9, abs_tol=1e-12):
+                out.append(f"{key} {q}: stored bias {bias:.3g}, its points give {max(errors):.3g}")
+    for face, entry in doc["faces"].items():
+        for criterion, sweep in entry["griffith"].items():
+            for q, v in sweep["quantities"].items():
+                bias = doc["check"][v["circle_check"]]["bias"][q]
+                if v["relative_bar"] * abs(v["value"]) < bias * (1 - 1e-12):
+                    out.append(f"{face} {criterion} {q}: bar below the circle's bias {bias:.3g}")
+    return out
+
+
+def test_procedure_check_on_kendall(table):
+    assert not check_problems(table)
+    broken = copy.deepcopy(table)
+    check = next(iter(broken["check"].values()))
+    check["bias"]["pulloff_force"] /= 2
+    assert check_problems(broken)
+    broken = copy.deepcopy(table)
+    sweep = broken["faces"]["square"]["griffith"][table["reference_criterion"]]
+    sweep["quantities"]["pulloff_force"]["relative_bar"] = 1e-5
+    assert check_problems(broken)
+
+
+def test_target_flags(table):
+    """Whether each reference meets the bar issue #22 asks (0.3 %, 0.5 % for the star and two
+    circles) is stated, and stated truly."""
+    for face, entry in table["faces"].items():
+        for q, qe in entry["quantities"].items():
+            if qe.get("reference"):
+                assert qe["within_target"] is (qe["reference"]["relative_bar"] <= entry["target_bar"]), (face, q)
+
+
+def test_square_is_rotation_invariant(table):
+    assert not rotation_problems(table)
+    broken = copy.deepcopy(table)
+    ref = broken["faces"]["square_45"]["quantities"]["pulloff_force"]["bem_griffith"]
+    ref["value"] *= 1 + 3 * ref["relative_bar"] + 0.01
+    assert rotation_problems(broken)
+
+
+def test_methods_agree_or_say_they_do_not(table):
+    assert not agreement_problems(table)
+    broken = copy.deepcopy(table)
+    for entry in broken["faces"].values():
+        qe = entry["quantities"]["pulloff_force"]
+        if all(m in qe for m in METHODS):
+            qe["bem_energy"]["value"] = qe["bem_griffith"]["value"] * 1.05
+            break
+    else:
+        pytest.skip("no face has both methods")
+    assert agreement_problems(broken)
+
+
+@pytest.mark.slow
+def test_square_sweep_reproduces_the_stored_points(table):
+    """The two coarsest Griffith points of the square, re-run: the table is what the script computes."""
+    script = _load_script()
+    for criterion, sweep in table["faces"]["square"]["griffith"].items():
+        for point in sweep["points"][:2]:
+            row = script.griffith_point("square", criterion, point["N"])
+            for q in QUANTITIES:
+                assert row["raw"][q] == pytest.approx(point["raw"][q], rel=1e-9, abs=0), (criterion, point["N"], q)
+            assert row["face_area"] == pytest.approx(point["face_area"], rel=1e-12)
