@@ -6,8 +6,9 @@
   approach is that of the finest finite range, not extrapolated, and has no bar.
 * Stiffness (one grid, or the zero-range limit's finest grid): ``c / N + (1+k)/2 |A_h / A - 1|``,
   N elements per equivalent radius, A_h the face's area on the grid; ``c`` fitted on the flat
-  circle and the flat square (also rotated) by ``python benchmarks/study_error_models.py`` and
-  stored in ``error_model.json`` beside this module.
+  circle, the square (also rotated) and the suite's other faces (against the reference table)
+  by ``python benchmarks/study_error_models.py`` and stored in ``error_model.json`` beside
+  this module.
 * A finite range is not the zero-range theory: its pull-off has no bar against Kendall.
 """
 
@@ -49,7 +50,7 @@ def error_bars(
     c = m["c"] if N >= model()["fit_from"] else m["coarse_c"]
     bars["stiffness"] = ErrorBar(
         c / N + 0.5 * defect,
-        f"{c:.3g}/N + 0.5 |dA/A| at N = {N:.3g} (flat circle and square; benchmarks/study_error_models.py)",
+        f"{c:.3g}/N + 0.5 |dA/A| at N = {N:.3g} (every flat suite face; benchmarks/study_error_models.py)",
     )
     if zero_range_estimate is not None:
         bars["pulloff_force"] = ErrorBar(

@@ -9,7 +9,8 @@ case.  ``c`` and ``plateau`` are fitted by ``python benchmarks/study_error_model
 ``fit_from`` elements per radius on, ``coarse_c`` below):
 
 * stiffness: flat circle (Eq. 1; graded: Eq. 34 at k = -0.5, 0.5, 0.9) and flat square, also
-  rotated by 30 degrees (the capacitance, K = pi E* C);
+  rotated by 30 degrees (the capacitance, K = pi E* C), and the suite's triangle, 4:1
+  rectangle, star and two circles against the reference table's extrapolated stiffness;
 * pull-off force and approach on the flat homogeneous circle (Kendall, Eqs. 4, 6), plus the
   plateau the paper's local criterion keeps on curved boundaries;
 * pull-off force on faces with corners (square, triangle): against the 1/N fit of the
@@ -84,7 +85,9 @@ def error_bars(
                 SPHERE_FORCE_C / N, f"{SPHERE_FORCE_C:g}/N at N = {N:.3g} (JKR sphere, docs/accuracy.md)"
             )
         return bars
-    bars["stiffness"] = _bar("stiffness", N, defect, (1 + k) / 2, source="flat circle, square, graded circle")
+    bars["stiffness"] = _bar(
+        "stiffness", N, defect, (1 + k) / 2, source="flat circle, square, graded circle, the suite's other faces"
+    )
     if scene.adhesion.work_of_adhesion == 0 or criterion != "paper":
         return bars
     if k == 0:
