@@ -317,8 +317,10 @@ def compare_cmd(file, resolution, quick, as_json):
                 f"{r.wall_time_s:>9.2f}  {r.converged}"
             )
         for k, v in cmp.theory.items():
-            if k != "source":
-                click.echo(f"{'theory':<16}{k} = {v:.6g}  ({cmp.theory['source']})")
+            if isinstance(v, float):
+                src = cmp.theory.get("sources", {}).get(k, cmp.theory["source"])
+                bar = cmp.theory.get("bars", {}).get(k)
+                click.echo(f"{'theory':<16}{k} = {v:.6g}{f' +- {bar:.2%}' if bar else ''}  ({src})")
         for k, why in cmp.skipped.items():
             click.echo(f"skipped {k}: {why}")
         for c in cmp.checks:

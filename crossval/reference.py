@@ -3,12 +3,13 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 import contact_scene as cs
 
+from . import face_references
 from .methods import reference_method
 from .suite import load_scene_or_builtin
 
@@ -25,13 +26,45 @@ class Reference:
     Attributes
     ----------
     scene : contact_scene.Scene
-        The scene solved.
-    result : contact_scene.Result
-        The reference method's result; its ``error_bars`` are the reference's accuracy.
+        The scene.
+    result : contact_scene.Result or None
+        The reference method's result; its ``error_bars`` are the reference's accuracy.  None
+        when the reference table holds the face (``table``).
+    table : dict
+        ``{quantity: crossval.face_references.FaceReference}``: converged values with their
+        bars from ``crossval/references/faces.json``, used instead of a solve.
     """
 
     scene: cs.Scene
-    result: cs.Result
+    result: cs.Result | None
+    table: dict = field(default_factory=dict)
+
+    @property
+    def source(self) -> str:
+        """Where the reference's values come from: the table, or the method that solved it."""
+        if self.table:
+            return "reference table"
+        assert self.result is not None
+        return self.result.method
+
+    def value(self, quantity: str) -> float:
+        """The reference value of ``quantity``.
+
+        Parameters
+        ----------
+        quantity : str
+            ``"pulloff_force"``, ``"pulloff_approach"`` or ``"stiffness"``.
+
+        Returns
+        -------
+        float
+            The value, in the scene's units (NaN where the reference has none).
+        """
+        if self.table:
+            ref = self.table.get(quantity)
+            return math.nan if ref is None else ref.value
+        assert self.result is not None
+        return float(getattr(self.result, quantity))
 
     def error_bar(self, quantity: str) -> float | None:
         """The reference's own relative accuracy on ``quantity``, or None if it claims none.
@@ -47,6 +80,10 @@ class Reference:
         float or None
             The bound on abs(value / exact - 1), or None.
         """
+        if self.table:
+            ref = self.table.get(quantity)
+            return None if ref is None else ref.relative
+        assert self.result is not None
         bar = self.result.error_bars.get(quantity)
         return None if bar is None else bar.relative
 
@@ -60,8 +97,10 @@ class Reference:
 def reference(scene_or_name, *, resolution: float = 64) -> Reference:
     """The most accurate method's result for a scene.
 
-    The FEM for the circular flat punches it covers (with its error estimate as bar), else the
-    Griffith BEM at ``resolution`` elements per radius (with its error model's bars).
+    The FEM for the circular flat punches it covers (with its error estimate as bar); the
+    reference table's converged values for the faces it holds (``crossval/references/faces.json``,
+    no solve); else the Griffith BEM at ``resolution`` elements per radius (with its error
+    model's bars).
 
     Parameters
     ----------
@@ -85,8 +124,11 @@ def reference(scene_or_name, *, resolution: float = 64) -> Reference:
     """
     scene = scene_or_name if isinstance(scene_or_name, cs.Scene) else load_scene_or_builtin(scene_or_name)
     bounded = reference_method(scene, "bounded")
+    table = face_references.for_scene(scene)
     if bounded is not None:
         method, r = bounded.name, bounded.solve(scene)
+    elif table:
+        return Reference(scene, None, table)
     else:
         grid = reference_method(scene, "sequence")
         if grid is None:
@@ -175,16 +217,16 @@ def assert_matches_reference(
         if own is None:
             if name in explicit:
                 raise ValueError(
-                    f"scene {ref.scene.name or '(unnamed)'}: the reference ({ref.result.method}) has no "
+                    f"scene {ref.scene.name or '(unnamed)'}: the reference ({ref.source}) has no "
                     f"error bar on {name}, so it cannot be checked against it"
                 )
             continue
         tol = own + rtol
-        want = getattr(ref.result, name)
+        want = ref.value(name)
         diff = value / want - 1 if want else math.inf
         if not abs(diff) <= tol:
             bad.append(
-                f"{name}: {value:.6g} vs reference {want:.6g} ({ref.result.method}): {diff:+.3%}, "
+                f"{name}: {value:.6g} vs reference {want:.6g} ({ref.source}): {diff:+.3%}, "
                 f"tolerance {tol:.3%} (reference accuracy {own:.3%} + rtol {rtol:.3%})"
             )
     if bad:

@@ -118,6 +118,10 @@ def _error_sentence(st) -> str:
     ref = st.reference_info
     kind = {
         "closed form": "the closed form",
+        "table": (
+            "the reference table's converged value (crossval/references/faces.json, "
+            "benchmarks/reference_table.py); its relative bar is the error bar"
+        ),
         "bounded": f"{ref.own_method}'s finest run; its a-posteriori bound is the error bar",
         "extrapolated": (
             f"{ref.own_method}'s sequence, forces scaled to the nominal face area, extrapolated to "
@@ -260,7 +264,11 @@ def report(
             for m, r in finest[s].items()
         )
         theory_rows = "".join(
-            f"<tr><td>{html.escape(k)}</td><td>{v:.6g}</td></tr>" for k, v in th.items() if k != "source"
+            f"<tr><td>{html.escape(k)}</td><td>{v:.6g}"
+            + (f" &plusmn; {th['bars'][k]:.2%}" if k in th.get("bars", {}) else "")
+            + "</td></tr>"
+            for k, v in th.items()
+            if isinstance(v, float)
         )
         chk = "".join(
             f"<li class={'ok' if c.passed else 'fail'}>{c.label}: {html.escape(c.explain())}</li>" for c in checks[s]

@@ -75,7 +75,8 @@ class ErrorReference:
 
     value: float
     name: str
-    #: "closed form", "bounded" (one result with a bounded error), "extrapolated" or "none"
+    #: "closed form", "table" (crossval/references/faces.json: converged, with its bar),
+    #: "bounded" (one result with a bounded error), "extrapolated" or "none"
     kind: str
     #: relative error bar of the reference itself (0 for a closed form)
     uncertainty: float = 0.0
@@ -217,6 +218,9 @@ def _reference_method(scene, kind: str) -> str | None:
 
 def _reference(scene, quantity, by, res) -> ErrorReference:
     theory = reference_values(scene)
+    if quantity in theory and quantity in theory.get("bars", {}):
+        u = theory["bars"][quantity]
+        return ErrorReference(theory[quantity], f"{theory['sources'][quantity]} (+-{u:.1e})", "table", u)
     if quantity in theory:
         return ErrorReference(theory[quantity], theory["source"], "closed form")
     bounded = _reference_method(scene, "bounded")

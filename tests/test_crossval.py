@@ -42,15 +42,14 @@ def test_compare_skips_fem_for_a_square_and_checks_bounds():
     cmp = crossval.compare(crossval.SUITE["square"], resolution=16, resolutions={"bem_energy": 1.0})
     partner = "bem_energy on bem_griffith's grid (w = 0)"
     assert list(cmp.results) == ["bem_griffith", "bem_energy", partner] and "fem_reference" in cmp.skipped
-    # Eqs. 13 and 18 for each method's force; the energy BEM's bracket widened by the Griffith
-    # bar; the two BEMs' stiffness on one grid in the kernels' window
+    # Eqs. 13 and 18 for the Griffith force, and the two BEMs' stiffness on one grid; the energy
+    # BEM's coarse sequence claims no bar on a cornered face's force (it overshoots by about its
+    # own estimate), so its force enters no check
+    assert "pulloff_force" not in cmp.results["bem_energy"].error_bars
     bounds = {(c.method, c.quantity) for c in cmp.checks if c.kind == "bounds"}
-    assert bounds == {
-        ("bem_griffith", "pulloff_force"),
-        ("bem_energy", "pulloff_force"),
-        ("bem_griffith vs bem_energy", "pulloff_force bracket"),
-        (f"bem_griffith vs {partner}", "stiffness"),
-    }
+    assert bounds == {("bem_griffith", "pulloff_force"), (f"bem_griffith vs {partner}", "stiffness")}
+    # the reference table's converged values for the square
+    assert {"pulloff_force", "pulloff_approach", "stiffness"} <= set(cmp.theory["bars"])
     failed = [c.explain() for c in cmp.checks if not c.passed]
     assert not failed, failed
 
@@ -247,3 +246,46 @@ def test_long_solves_report_their_stage_with_v_and_stay_silent_without():
     quiet = subprocess.run(args, capture_output=True, text=True)
     assert quiet.returncode == 0 and quiet.stderr == ""
     assert "pulloff_force" in quiet.stdout
+
+
+def _table_faces():
+    from crossval import face_references
+
+    faces = face_references.table()["faces"]
+    return [
+        n for n, f in faces.items() if n in crossval.SUITE and any(q.get("reference") for q in f["quantities"].values())
+    ]
+
+
+@pytest.mark.parametrize("name", ["kendall_circle", "incompressible_circle", *_table_faces()])
+def test_references_pass_the_exact_values_and_fail_one_and_a_half_percent_where_they_are_sharp(name):
+    """Issue #20, item 4: an exact solver passes ``rtol=0.01`` on every built-in scene, and one
+    off by 1.5 % fails wherever the reference is good to 0.5 %.  Exact: the closed form on the
+    circles; on the faces without one, each of the two independent methods' converged values
+    that the reference table holds (their gap is within their combined bars)."""
+    from crossval import face_references
+    from crossval.compare import reference_values
+
+    sc = crossval.SUITE[name]
+    ref = crossval.reference(name)
+    theory = reference_values(sc)
+    quantities = [q for q in ("pulloff_force", "pulloff_approach", "stiffness") if ref.error_bar(q) is not None]
+    assert quantities
+    if isinstance(sc.indenter.shape, cs.Circle):
+        assert ref.source == "fem_reference"
+        exact = [{q: theory[q] for q in quantities}]
+    else:
+        assert ref.source == "reference table" and ref.result is None  # no solve
+        entry = face_references.table()["faces"][name]["quantities"]
+        scale = {q: ref.value(q) / entry[q]["reference"]["value"] for q in quantities}
+        exact = [
+            {q: entry[q][m]["value"] * scale[q] for q in quantities if m in entry[q]}
+            for m in ("bem_griffith", "bem_energy")
+        ]
+    for values in exact:
+        crossval.assert_matches_reference(ref, rtol=0.01, **values)
+    for q in quantities:
+        if ref.error_bar(q) <= 0.005:
+            for factor in (1.015, 0.985):
+                with pytest.raises(AssertionError, match=q):
+                    crossval.assert_matches_reference(ref, **{q: factor * ref.value(q)})

@@ -1,0 +1,107 @@
+"""Converged reference values for the built-in faces without a closed form.
+
+``crossval/references/faces.json`` (written by ``python benchmarks/reference_table.py``, which
+states its procedure, resolutions and revision in the file) holds, per face, F_A / F_A,upper
+(Eq. 13), the approach at F_A over d_c,upper (Eq. 14) and the stiffness over 2 E* sqrt(A/pi)
+(Eq. 9), each with a relative error bar: the Griffith BEM extrapolated over grids and the
+energy BEM's zero-range limit, the better-bounded of the two as the reference.  Being
+dimensionless, each entry serves every scene with that face on a homogeneous half-space, at
+any E* and w; :func:`for_scene` turns it into the scene's units.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import math
+from dataclasses import dataclass
+from importlib import resources
+
+import contact_scene as cs
+from contact_scene import theory as T
+
+__all__ = ["FaceReference", "for_scene", "table"]
+
+#: where the table lives inside the package
+TABLE = "references/faces.json"
+
+
+@dataclass(frozen=True)
+class FaceReference:
+    """One quantity of the table in a scene's units.
+
+    Attributes
+    ----------
+    value : float
+        The reference value (N, m or N/m in the scene's units).
+    relative : float
+        Its relative error bar.
+    source : str
+        The face, the method the value comes from and the table's command and revision.
+    """
+
+    value: float
+    relative: float
+    source: str
+
+
+@functools.cache
+def table() -> dict:
+    """The stored table (``crossval/references/faces.json``), as written by its benchmark."""
+    return json.loads(resources.files("crossval").joinpath(TABLE).read_text())
+
+
+def _face_name(scene: cs.Scene) -> str | None:
+    from .suite import BUILTIN
+
+    shape = scene.indenter.shape
+    for name, entry in table()["faces"].items():
+        built = BUILTIN.get(entry.get("scene", name))
+        # the built-in scene of that name, not a rotated variant stored under another key
+        if built is not None and entry.get("scene", name) == name and built.indenter.shape == shape:
+            return name
+    return None
+
+
+def for_scene(scene: cs.Scene) -> dict[str, FaceReference]:
+    """The table's values for ``scene`` in its own units, by quantity; empty if none apply.
+
+    Applies to a flat punch of one of the table's faces (the same shape as the built-in scene of
+    that name) on a homogeneous half-space, at any E* and w.
+
+    Parameters
+    ----------
+    scene : contact_scene.Scene
+        The scene.
+
+    Returns
+    -------
+    dict
+        ``{quantity: FaceReference}`` for the quantities the table has a reference for.
+    """
+    if not (scene.indenter.profile.is_flat and isinstance(scene.material, cs.Homogeneous)):
+        return {}
+    name = _face_name(scene)
+    if name is None:
+        return {}
+    shape = scene.indenter.shape
+    E, w = scene.material.effective_modulus, scene.adhesion.work_of_adhesion
+    A, phi = shape.nominal_area, shape.filling_factor
+    scale = {
+        "pulloff_force": T.upper_bound_force(E_star=E, work=w, area=A, filling_factor=phi),
+        "pulloff_approach": T.upper_bound_approach(E_star=E, work=w, area=A, filling_factor=phi),
+        "stiffness": 2.0 * E * math.sqrt(A / math.pi),
+    }
+    doc = table()
+    out = {}
+    for q, entry in doc["faces"][name]["quantities"].items():
+        ref = entry.get("reference")
+        if q not in scale or not ref:
+            continue
+        out[q] = FaceReference(
+            ref["value"] * scale[q],
+            ref["relative_bar"],
+            f"reference table, {name}: {ref['method']} (crossval/references/faces.json, "
+            f"revision {doc.get('revision', '?')})",
+        )
+    return out
