@@ -5,8 +5,10 @@ states its procedure, resolutions and revision in the file) holds, per face, F_A
 (Eq. 13), the approach at F_A over d_c,upper (Eq. 14) and the stiffness over 2 E* sqrt(A/pi)
 (Eq. 9), each with a relative error bar: the Griffith BEM extrapolated over grids and the
 energy BEM's zero-range limit, the better-bounded of the two as the reference.  Being
-dimensionless, each entry serves every scene with that face on a homogeneous half-space, at
-any E* and w; :func:`for_scene` turns it into the scene's units.
+dimensionless, each entry serves every scene with that face (same shape and size) on a
+homogeneous half-space, at any E* and w; :func:`for_scene` turns it into the scene's units.
+A method is checked against another method's value where the table has one (its own would
+share its bias); against its own extrapolated value the check is a calibration residual.
 """
 
 from __future__ import annotations
@@ -38,11 +40,41 @@ class FaceReference:
         Its relative error bar.
     source : str
         The face, the method the value comes from and the table's command and revision.
+    method : str
+        The method the value comes from.
+    by_method : tuple
+        ``(method, value, relative)`` for each method with a converged value in the table.
     """
 
     value: float
     relative: float
     source: str
+    #: the method the value comes from ("bem_griffith", "bem_energy")
+    method: str = ""
+    #: every method's own converged value in the scene's units, ``{method: (value, relative)}``,
+    #: so that a method can be checked against another's rather than its own
+    by_method: tuple = ()
+
+    def independent_of(self, method: str) -> FaceReference | None:
+        """The table's value for this quantity from a method other than ``method``, or None.
+
+        Parameters
+        ----------
+        method : str
+            The method to be checked.
+
+        Returns
+        -------
+        FaceReference or None
+            This reference if it comes from another method, else another method's converged
+            value with its bar, else None (only ``method`` itself has a value).
+        """
+        if self.method != method:
+            return self
+        for other, value, relative in self.by_method:
+            if other != method:
+                return FaceReference(value, relative, self.source.replace(self.method, other), other, self.by_method)
+        return None
 
 
 @functools.cache
@@ -66,8 +98,8 @@ def _face_name(scene: cs.Scene) -> str | None:
 def for_scene(scene: cs.Scene) -> dict[str, FaceReference]:
     """The table's values for ``scene`` in its own units, by quantity; empty if none apply.
 
-    Applies to a flat punch of one of the table's faces (the same shape as the built-in scene of
-    that name) on a homogeneous half-space, at any E* and w.
+    Applies to a flat punch of one of the table's faces (the same shape and size as the built-in
+    scene of that name) on a homogeneous half-space, at any E* and w.
 
     Parameters
     ----------
@@ -98,10 +130,17 @@ def for_scene(scene: cs.Scene) -> dict[str, FaceReference]:
         ref = entry.get("reference")
         if q not in scale or not ref:
             continue
+        by_method = tuple(
+            (m, entry[m]["value"] * scale[q], entry[m]["relative_bar"])
+            for m in ("bem_griffith", "bem_energy")
+            if isinstance(entry.get(m), dict) and "value" in entry[m]
+        )
         out[q] = FaceReference(
             ref["value"] * scale[q],
             ref["relative_bar"],
             f"reference table, {name}: {ref['method']} (crossval/references/faces.json, "
             f"revision {doc.get('revision', '?')})",
+            ref["method"],
+            by_method,
         )
     return out
