@@ -444,6 +444,8 @@ def fmt(v: dict | None, digits: int = 4) -> str:
 
 
 def write(cache: Path, criterion: str) -> None:
+    if not any(cache.glob("*__griffith__*.json")):
+        raise SystemExit(f"no cached solve in {cache}: run the griffith and energy parts first (same --cache)")
     table = assemble(cache, criterion)
     when = datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")
     rev = revision()
@@ -462,7 +464,8 @@ def write(cache: Path, criterion: str) -> None:
         "quantity_keys": {q: LABEL[q] for q in QUANTITIES},
         "reference_criterion": criterion,
         "command": "python benchmarks/reference_table.py griffith && python benchmarks/reference_table.py energy "
-        "&& python benchmarks/reference_table.py write",
+        "&& python benchmarks/reference_table.py write (each with the same --cache; this file from "
+        f"--cache {cache}, reference criterion {criterion})",
         "revision": rev,
         "date": when,
         "griffith_procedure": (

@@ -86,8 +86,8 @@ def rotation_problems(doc: dict) -> list[str]:
     a, b = doc["faces"]["square"]["quantities"], doc["faces"]["square_45"]["quantities"]
     out = []
     for q in QUANTITIES:
-        for m in METHODS:
-            if m in a[q] and m in b[q]:
+        for m in sorted(k for k in a[q] if k.startswith("bem_")):  # each method and criterion
+            if m in b[q]:
                 x, y = a[q][m], b[q][m]
                 combined = x["relative_bar"] * abs(x["value"]) + y["relative_bar"] * abs(y["value"])
                 if abs(x["value"] - y["value"]) > combined:
