@@ -111,6 +111,23 @@ def _table_faces():
     return out
 
 
+def _stiffness_errors(method: str, scene, K: float) -> list[float]:
+    """K_h / K - 1 of ``method`` ("bem_griffith" or "bem_energy") on ``scene`` at each of
+    STIFFNESS_NS elements per radius."""
+    errs = []
+    for N in STIFFNESS_NS:
+        grid = cs.Grid(elements_per_radius=N)
+        if method == "bem_energy":
+            r = be.solve(scene, be.EnergySettings(grid=grid))
+            if not r.converged:
+                raise RuntimeError(f"the energy solve did not converge at N = {N}: {r.messages}")
+            K_h = r.stiffness
+        else:
+            K_h = bg.press(scene, bg.GriffithSettings(grid=grid)).stiffness
+        errs.append(K_h / K - 1)
+    return errs
+
+
 def add_stiffness_faces(names) -> None:
     """Measure the stiffness of the named faces of :func:`_stiffness_faces` with both BEMs, add
     them to the stored models and refit (the other faces' stored errors are kept)."""
@@ -122,18 +139,9 @@ def add_stiffness_faces(names) -> None:
         doc = json.loads(path.read_text())
         stored = doc["quantities"]["stiffness"]["faces"]
         for name in names:
-            sc, K = faces[name]
-            errs = []
-            for N in STIFFNESS_NS:
-                if method == "bem_energy":
-                    r = be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=N)))
-                    if not r.converged:
-                        raise RuntimeError(f"the energy solve did not converge at N = {N}: {r.messages}")
-                    K_h = r.stiffness
-                else:
-                    K_h = bg.press(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N))).stiffness
-                errs.append(K_h / K - 1)
-                print(f"{method} {name} N = {N}: {errs[-1]:+.5f} (N x error {N * errs[-1]:+.3f})", flush=True)
+            errs = _stiffness_errors(method, *faces[name])
+            for N, e in zip(STIFFNESS_NS, errs, strict=True):
+                print(f"{method} {name} N = {N}: {e:+.5f} (N x error {N * e:+.3f})", flush=True)
             stored[name] = dict(zip(map(str, STIFFNESS_NS), errs, strict=True))
         path.write_text(json.dumps(doc, indent=1) + "\n")
         refit(path)
@@ -191,10 +199,7 @@ def griffith():
     rows, model = [], {}
     stiff, c_K = {}, 0.0
     for name, sc, K in _stiffness_faces():
-        errs = [
-            bg.press(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N))).stiffness / K - 1
-            for N in STIFFNESS_NS
-        ]
+        errs = _stiffness_errors("bem_griffith", sc, K)
         area = [_area_defect(sc, N) for N in STIFFNESS_NS]
         stiff[name] = errs
         k = getattr(sc.material, "exponent", 0.0)
@@ -245,13 +250,8 @@ def energy():
     for name, sc, K in _stiffness_faces():
         if not isinstance(sc.material, cs.Homogeneous):
             continue  # the energy method is for homogeneous half-spaces
-        errs = []
+        errs = _stiffness_errors("bem_energy", sc, K)
         area = [_area_defect(sc, N) for N in STIFFNESS_NS]
-        for N in STIFFNESS_NS:
-            r = be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=N)))
-            if not r.converged:
-                raise RuntimeError(f"the energy solve did not converge at N = {N}: {r.messages}")
-            errs.append(r.stiffness / K - 1)
         stiff[name] = errs
         c_K = max(c_K, _envelope(STIFFNESS_NS, errs, area=area, exponent=0.5))
         rows += [
