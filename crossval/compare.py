@@ -349,6 +349,14 @@ def same_grid_partners(scene: cs.Scene, results: dict, *, among=None) -> dict[st
     return out
 
 
+def _bracket_check(method: str, quantity: str, value: float, slack: float, bar: cs.ErrorBar, name: str, **kw) -> Check:
+    """``value`` (with its own relative bar ``slack``) must reach into ``bar.interval``, the
+    interval a method brackets the exact value of ``quantity`` by."""
+    assert bar.interval is not None
+    low, high = bar.interval
+    return Check(method, f"{quantity} bracket", value, low, name, slack, kind="bounds", upper=high * (1 + slack), **kw)
+
+
 def check_results(scene: cs.Scene, results: dict) -> tuple[Check, ...]:
     """Checks of solved results against the closed forms and against each other.
 
@@ -386,15 +394,13 @@ def check_results(scene: cs.Scene, results: dict) -> tuple[Check, ...]:
             if q in theory and bar is not None and bar.interval is not None:
                 # the method brackets the exact value: the closed form must lie inside
                 checks.append(
-                    Check(
+                    _bracket_check(
                         name,
-                        f"{q} bracket",
+                        q,
                         ref_value,
-                        bar.interval[0],
-                        f"its bracket on the exact {q}; the value checked is {ref_src}'s",
                         ref_bar,
-                        kind="bounds",
-                        upper=bar.interval[1] * (1 + ref_bar),
+                        bar,
+                        f"its bracket on the exact {q}; the value checked is {ref_src}'s",
                         role=bar.role,
                         converged=r.converged,
                         basis=bar.source,
@@ -468,15 +474,13 @@ def check_results(scene: cs.Scene, results: dict) -> tuple[Check, ...]:
                         continue
                     # the other method's value, within its own bar, must reach into the bracket
                     checks.append(
-                        Check(
+                        _bracket_check(
                             f"{ny} vs {nx}",
-                            f"{q} bracket",
+                            q,
                             getattr(y, q),
-                            bx.interval[0],
-                            f"{nx}'s bracket on the exact {q}, widened by {ny}'s bar",
                             by.relative,
-                            kind="bounds",
-                            upper=bx.interval[1] * (1 + by.relative),
+                            bx,
+                            f"{nx}'s bracket on the exact {q}, widened by {ny}'s bar",
                             role=role,
                             converged=a.converged and b.converged,
                             basis=f"{bx.source}; {by.source}",

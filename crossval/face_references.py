@@ -42,8 +42,8 @@ class FaceReference:
         The face, the method the value comes from and the table's command and revision.
     method : str
         The method the value comes from.
-    by_method : tuple
-        ``(method, value, relative)`` for each method with a converged value in the table.
+    by_method : tuple of FaceReference
+        Each method's own converged value in the table, with its bar.
     """
 
     value: float
@@ -51,9 +51,9 @@ class FaceReference:
     source: str
     #: the method the value comes from ("bem_griffith", "bem_energy")
     method: str = ""
-    #: every method's own converged value in the scene's units, ``{method: (value, relative)}``,
-    #: so that a method can be checked against another's rather than its own
-    by_method: tuple = ()
+    #: every method's own converged value, each a FaceReference in the scene's units, so that a
+    #: method can be checked against another's rather than its own
+    by_method: tuple[FaceReference, ...] = ()
 
     def independent_of(self, method: str) -> FaceReference | None:
         """The table's value for this quantity from a method other than ``method``, or None.
@@ -71,10 +71,7 @@ class FaceReference:
         """
         if self.method != method:
             return self
-        for other, value, relative in self.by_method:
-            if other != method:
-                return FaceReference(value, relative, self.source.replace(self.method, other), other, self.by_method)
-        return None
+        return next((other for other in self.by_method if other.method != method), None)
 
 
 @functools.cache
@@ -125,22 +122,23 @@ def for_scene(scene: cs.Scene) -> dict[str, FaceReference]:
         "stiffness": 2.0 * E * math.sqrt(A / math.pi),
     }
     doc = table()
+
+    def source(method: str) -> str:
+        return (
+            f"reference table, {name}: {method} (crossval/references/faces.json, revision {doc.get('revision', '?')})"
+        )
+
     out = {}
     for q, entry in doc["faces"][name]["quantities"].items():
         ref = entry.get("reference")
         if q not in scale or not ref:
             continue
         by_method = tuple(
-            (m, entry[m]["value"] * scale[q], entry[m]["relative_bar"])
+            FaceReference(entry[m]["value"] * scale[q], entry[m]["relative_bar"], source(m), m)
             for m in ("bem_griffith", "bem_energy")
             if isinstance(entry.get(m), dict) and "value" in entry[m]
         )
         out[q] = FaceReference(
-            ref["value"] * scale[q],
-            ref["relative_bar"],
-            f"reference table, {name}: {ref['method']} (crossval/references/faces.json, "
-            f"revision {doc.get('revision', '?')})",
-            ref["method"],
-            by_method,
+            ref["value"] * scale[q], ref["relative_bar"], source(ref["method"]), ref["method"], by_method
         )
     return out
