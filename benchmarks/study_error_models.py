@@ -368,8 +368,8 @@ def write_docs() -> None:
             lines.append(f"| {q} | {m['c']:.3f} | {m['plateau']:g} | {m.get('area_exponent', '')} |")
             if "cornered_c" in m:
                 lines.append(
-                    f"| {q}, faces with corners | {m['cornered_c']:.3f} | {m['plateau']:g} | "
-                    f"{m.get('area_exponent', '')} |"
+                    f"| {q}, the square and triangle (other faces: no bar) | {m['cornered_c']:.3f} | "
+                    f"{m['plateau']:g} | {m.get('area_exponent', '')} |"
                 )
         lines += ["", "Measured relative errors (value / exact - 1) that the fit covers:", ""]
         for q, m in doc["quantities"].items():
