@@ -106,6 +106,8 @@ class Equilibria:
             gtol=s.gtol,
             max_iterations=s.max_iterations,
             memory=s.memory,
+            restart_on_wall_change=s.restart_on_wall_change,
+            single_precision_directions=s.single_precision_directions,
         )
         self.work.add(m, d)
         return m
@@ -131,6 +133,8 @@ class Equilibria:
             max_iterations=s.max_iterations,
             memory=s.memory,
             peel_fraction=self.peel_fraction,
+            restart_on_wall_change=s.restart_on_wall_change,
+            single_precision_directions=s.single_precision_directions,
         )
         self.work.add(m, d)
         if not m.peeled:

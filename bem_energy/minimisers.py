@@ -107,6 +107,8 @@ def minimise(
     max_iterations: int = 50_000,
     memory: int = 10,
     peel_fraction: float | None = None,
+    restart_on_wall_change: bool = False,
+    single_precision_directions: bool = False,
 ) -> Minimum:
     """The constrained minimum of the energy from the warm start ``U0``.
 
@@ -135,6 +137,17 @@ def minimise(
         s, projected CG only: stop, not converged and ``peeled``, once the face cells at the wall
         have fallen below (1 - s) of the most this minimisation had, i.e. the state is peeling
         off toward the detached branch (see :meth:`bem_energy.equilibria.Equilibria.pulling_trial`).
+    restart_on_wall_change : bool, optional
+        Projected CG only: restart from steepest descent whenever the set of face cells held at
+        the wall changes (Polonsky-Keer's rule).  False (the default) keeps the conjugate
+        direction, projected onto the new free set: a detaching or peeling state changes that
+        set at about every iteration, and restarting there made half of all iterations steepest
+        descent.  Either converges to the same projected-gradient tolerance.
+    single_precision_directions : bool, optional
+        Projected CG only: compute the pressure of each search direction with single-precision
+        FFTs.  The pressure is updated by it along the steps and recomputed in double precision
+        every 50 iterations and before convergence is declared, so the minimum is judged on
+        the double-precision gradient either way.
 
     Returns
     -------
@@ -154,7 +167,17 @@ def minimise(
         if method == "lbfgsb":
             return _lbfgsb(prob, U0, d, adhesive, gtol, max_iterations, memory)
         if method == "pk":
-            return _projected_cg(prob, U0, d, adhesive, gtol, max_iterations, peel_fraction)
+            return _projected_cg(
+                prob,
+                U0,
+                d,
+                adhesive,
+                gtol,
+                max_iterations,
+                peel_fraction,
+                restart_on_wall_change,
+                single_precision_directions,
+            )
         if method == "cvxpy":
             return _cvxpy(prob, U0, d, adhesive, gtol, max_iterations)
     raise ValueError(f"unknown minimiser {method!r}")
@@ -205,17 +228,35 @@ def _lbfgsb(prob, U0, d, adhesive, gtol, max_iterations, memory) -> Minimum:
 # ---------------------------------------------------------------------------
 
 
-def _projected_cg(prob, U0, d, adhesive, gtol, max_iterations, peel_fraction=None) -> Minimum:
+def _projected_cg(
+    prob,
+    U0,
+    d,
+    adhesive,
+    gtol,
+    max_iterations,
+    peel_fraction=None,
+    restart_on_wall_change=False,
+    single_precision_directions=False,
+) -> Minimum:
     """Conjugate directions on the free set, preconditioned by C itself (which inverts the
     elastic Hessian C^-1 exactly away from the wall), step from the local quadratic model,
-    projection onto the wall, restart whenever the set at the wall changes (as in
-    Polonsky-Keer) or the direction is not a descent direction; Armijo backtracking keeps the
-    energy decreasing on the concave adhesive part."""
+    projection onto the wall.  The direction restarts from steepest descent when it is not a
+    descent direction, and with ``restart_on_wall_change`` also whenever the set at the wall
+    changes (as in Polonsky-Keer); otherwise the previous direction is kept, projected onto
+    the new free set (Polak-Ribiere's beta, clipped at zero, from the projected gradients).
+    Armijo backtracking keeps the energy decreasing on the concave adhesive part.  The
+    pressure is updated along each step from the direction's pressure (in single precision
+    with ``single_precision_directions``) and recomputed from U every 50 iterations and, in
+    single precision, before a minimum is accepted."""
     L = _length_scale(prob, d, adhesive)
-    face = prob.face
+    # the face lies in the raster's corner of the padded grid: its cells are read and written
+    # there (``face_block``), a quarter of the grid
+    corner = (slice(0, prob.n[0]), slice(0, prob.n[1]))
+    face_block = prob.face_block
     wall = _lower_bound(prob, d)
     U = U0.copy()
-    U[face] = np.maximum(U[face], wall)
+    U[corner][face_block] = np.maximum(prob.on_face(U), wall)
     E, G, P = prob.energy(U, d, adhesive)
     direction = None
     Gf_previous = None
@@ -224,37 +265,50 @@ def _projected_cg(prob, U0, d, adhesive, gtol, max_iterations, peel_fraction=Non
     evals = 1
     potential = prob.potential if adhesive else None
     most_in_contact = 0
+    direction_pressure_of = prob.pressure_single if single_precision_directions else prob.pressure
+    updated = False  # P, E and G carry incremental updates since they were last computed from U
     for it in range(1, max_iterations + 1):
-        at_wall = np.zeros(prob.padded, bool)
-        at_wall_face = U[face] <= wall + 1e-13 * L
-        at_wall[face] = at_wall_face
+        at_wall_face = prob.on_face(U) <= wall + 1e-13 * L
         if peel_fraction is not None:
             in_contact = int(np.count_nonzero(at_wall_face))
             most_in_contact = max(most_in_contact, in_contact)
             if in_contact < (1.0 - peel_fraction) * most_in_contact:
                 return Minimum(U, P, E, it - 1, evals, False, math.inf, "peeling off", peeled=True)
-        fixed = at_wall & (G > 0)
-        Gf = np.where(fixed, 0.0, G)
+        # cells held at the wall (pressed onto it), on the raster's corner
+        fixed = np.zeros(face_block.shape, bool)
+        fixed[face_block] = at_wall_face & (prob.on_face(G) > 0)
+        Gf = G.copy()
+        Gf[corner][fixed] = 0.0
         pg = float(np.max(np.abs(Gf))) * prob.self_compliance / (prob.cell * L)
+        if pg <= gtol and updated and single_precision_directions:
+            # judge the minimum on the gradient computed from U in double precision
+            E, G, P = prob.energy(U, d, adhesive)
+            evals += 1
+            updated = False
+            fixed[face_block] = at_wall_face & (prob.on_face(G) > 0)
+            Gf = G.copy()
+            Gf[corner][fixed] = 0.0
+            pg = float(np.max(np.abs(Gf))) * prob.self_compliance / (prob.cell * L)
         if pg <= gtol:
             return Minimum(U, P, E, it - 1, evals, True, pg)
         preconditioned = prob.preconditioned(Gf)
-        preconditioned[fixed] = 0.0
+        preconditioned[corner][fixed] = 0.0
         zg = float(np.vdot(preconditioned, Gf))
-        if direction is not None and np.array_equal(fixed, fixed_previous) and zg_previous > 0:
+        same_set = not restart_on_wall_change or np.array_equal(fixed, fixed_previous)
+        if direction is not None and same_set and zg_previous > 0:
             beta = max(0.0, float(np.vdot(preconditioned, Gf - Gf_previous)) / zg_previous)
             direction = -preconditioned + beta * direction
-            direction[fixed] = 0.0
+            direction[corner][fixed] = 0.0
             if float(np.vdot(direction, Gf)) >= 0:
                 direction = -preconditioned
         else:
             direction = -preconditioned
         fixed_previous, zg_previous, Gf_previous = fixed, zg, Gf
-        direction_pressure = prob.pressure(direction)
+        direction_pressure = direction_pressure_of(direction)
         elastic_curvature = float(np.vdot(direction, direction_pressure))
         curvature = elastic_curvature
         if potential is not None:
-            direction_face = direction[face]
+            direction_face = prob.on_face(direction)
             curvature += float(np.dot(potential.curvature(prob.gap(U, d)) * direction_face, direction_face))
         gs = float(np.vdot(Gf, direction))
         # Newton step on the local quadratic model; where the adhesion makes the model concave along
@@ -262,12 +316,12 @@ def _projected_cg(prob, U0, d, adhesive, gtol, max_iterations, peel_fraction=Non
         alpha = -gs / (prob.cell * (curvature if curvature > 0 else elastic_curvature))
         for halvings in range(60):  # noqa: B007  (the count is read after the loop)
             Un = U + alpha * direction
-            clipped = Un[face] < wall
-            if clipped.any():
-                Un[face] = np.maximum(Un[face], wall)
-                Pn = None
+            Un_face = prob.on_face(Un)
+            if (Un_face < wall).any():
+                Un[corner][face_block] = np.maximum(Un_face, wall)
+                Pn, Pn_updated = None, False
             else:
-                Pn = P + alpha * direction_pressure
+                Pn, Pn_updated = P + alpha * direction_pressure, True
             En, Gn, Pn = prob.energy(Un, d, adhesive, Pn)
             evals += 1
             if En <= E + 1e-4 * alpha * gs:
@@ -285,9 +339,11 @@ def _projected_cg(prob, U0, d, adhesive, gtol, max_iterations, peel_fraction=Non
             # 150,000 in one minimisation before this stop)
             return Minimum(Un, Pn, En, it, evals, pg <= gtol, pg, "stagnated at round-off in the energy")
         U, P, E, G = Un, Pn, En, Gn
+        updated = Pn_updated
         if it % 50 == 0:
             # refresh P from U: the incremental update accumulates round-off
             E, G, P = prob.energy(U, d, adhesive)
+            updated = False
     return Minimum(U, P, E, max_iterations, evals, False, pg, "iteration limit")
 
 

@@ -78,9 +78,12 @@ class EnergyProblem:
     exponent: float = 0.0  # the grading exponent k (0: homogeneous)
     #: the symbol in single precision, for :meth:`preconditioned`
     symbol_single: np.ndarray = field(init=False, repr=False)
+    #: the face's mask on the raster's corner of the padded grid (:meth:`on_face`)
+    face_block: np.ndarray = field(init=False, repr=False)
 
     def __post_init__(self):
         object.__setattr__(self, "symbol_single", self.symbol.astype(np.float32))
+        object.__setattr__(self, "face_block", self.crop(self.face).copy())
 
     @property
     def padded(self) -> tuple[int, int]:
@@ -131,6 +134,26 @@ class EnergyProblem:
         """
         return sfft.irfft2(sfft.rfft2(P) * self.symbol, s=self.padded)
 
+    def pressure_single(self, U: np.ndarray) -> np.ndarray:
+        """C^-1 U in single precision (returned in double): a search direction's pressure.
+
+        The projected CG adds it, times the step, to a pressure that is recomputed in double
+        precision from U every few dozen iterations and before a minimum is accepted, so its
+        round-off (1e-7 relative to the step's pressure) perturbs the path, not the minimum.
+
+        Parameters
+        ----------
+        U : numpy.ndarray
+            Surface displacements on the padded grid.
+
+        Returns
+        -------
+        numpy.ndarray
+            C^-1 U, float64, on the padded grid.
+        """
+        U32 = U.astype(np.float32)
+        return sfft.irfft2(sfft.rfft2(U32) / self.symbol_single, s=self.padded).astype(np.float64)
+
     def preconditioned(self, G: np.ndarray) -> np.ndarray:
         """C G in single precision (returned in double): the projected CG's preconditioner.
 
@@ -151,6 +174,24 @@ class EnergyProblem:
         G32 = G.astype(np.float32)
         return sfft.irfft2(sfft.rfft2(G32) * self.symbol_single, s=self.padded).astype(np.float64)
 
+    def on_face(self, A: np.ndarray) -> np.ndarray:
+        """The face cells' entries of a padded-grid array, 1-D in the order of ``A[face]``.
+
+        The same as ``A[self.face]``, read from the raster's corner only: the face lies there,
+        and a mask over the whole padded grid reads four times as many cells.
+
+        Parameters
+        ----------
+        A : numpy.ndarray
+            An array on the padded grid.
+
+        Returns
+        -------
+        numpy.ndarray
+            A copy of its face entries.
+        """
+        return self.crop(A)[self.face_block]
+
     def gap(self, U: np.ndarray, d: float) -> np.ndarray:
         """The gap g = U - (d - h) on the face cells (>= 0 at the hard wall).
 
@@ -166,7 +207,7 @@ class EnergyProblem:
         numpy.ndarray
             The gaps, 1-D in the order of ``U[face]``.
         """
-        return U[self.face] - (d - self.height)
+        return self.on_face(U) - (d - self.height)
 
     def energy(self, U: np.ndarray, d: float, adhesive: bool, P: np.ndarray | None = None):
         """The energy Pi(U), its gradient and the pressure, in physical units.
@@ -201,7 +242,7 @@ class EnergyProblem:
         if adhesive and self.potential is not None:
             g = self.gap(U, d)
             E += float(np.sum(self.potential.energy(g)))
-            G[self.face] += self.potential.stress(g)
+            self.crop(G)[self.face_block] += self.potential.stress(g)
         return self.cell * E, self.cell * G, P
 
     def force(self, P: np.ndarray) -> float:
@@ -217,7 +258,7 @@ class EnergyProblem:
         float
             The force (compressive > 0, tensile < 0).
         """
-        return float(self.cell * np.sum(P[self.face]))
+        return float(self.cell * np.sum(self.on_face(P)))
 
     def crop(self, A: np.ndarray) -> np.ndarray:
         """The raster's (nx, ny) corner of a padded-grid array.

@@ -78,6 +78,18 @@ class EnergySettings:
         (projected CG only; see ``Equilibria.pulling_trial``): a detaching minimisation
         otherwise creeps for about a hundred iterations and then peels one ring of cells per
         iteration.  True by default.
+    restart_on_wall_change : bool, optional
+        Projected CG only: restart the conjugate directions from steepest descent whenever the
+        set of face cells held at the wall changes (Polonsky-Keer's rule).  False (the default)
+        keeps the direction, projected onto the new free set: peeling states change that set
+        at nearly every iteration, and the restarts were half of all iterations of a zero-range
+        sequence.  The minima agree to the tolerance ``gtol``; a pull-off's path, and so its
+        F_A, moves within the method's path noise (benchmarks/bench_energy_zero_range.py).
+    single_precision_directions : bool, optional
+        Projected CG only: the pressure of each search direction from single-precision FFTs
+        (about three times cheaper than double precision on these grids), with the pressure
+        recomputed in double precision every 50 iterations and before a minimum is accepted,
+        so that convergence is judged on the double-precision gradient.  False by default.
 
     Raises
     ------
@@ -97,6 +109,8 @@ class EnergySettings:
     kernel: str = choice("collocation", ("collocation", "love"))
     locate_detachment: bool = flag(True)
     stop_peeling_trials: bool = flag(True)
+    restart_on_wall_change: bool = flag(False)
+    single_precision_directions: bool = flag(False)
 
     def __post_init__(self):
         # a type, not a range

@@ -17,6 +17,7 @@ import pytest
 import bem_energy as be
 import bem_griffith as bg
 import contact_scene as cs
+from bem_energy.minimisers import projected_gradient
 from contact_scene import theory as T
 
 W = 0.02
@@ -53,6 +54,36 @@ def test_three_minimisers_reach_the_same_minimum(kind, adhesive, d):
     # traction-free off the face: the padded circulant reproduces the non-periodic half-space
     P = out["lbfgsb"].P
     assert np.max(np.abs(P[~prob.face])) <= 1e-5 * np.max(np.abs(P[prob.face]))
+
+
+@pytest.mark.parametrize("restart", [True, False])
+@pytest.mark.parametrize("single", [True, False])
+@pytest.mark.parametrize("beyond", [0.9, 1.0])
+def test_projected_cg_variants_reach_the_minimum_through_a_changing_wall_set(restart, single, beyond):
+    """Pulled from the face on the wall to 0.9 and 1.0 of the detachment approach: the state
+    stays attached (all contact kept) or peels off completely, so the set of cells held at
+    the wall changes over the iterations.  With or without restarting the conjugate
+    directions at each change, and with single-precision direction pressures, the projected
+    CG reaches L-BFGS-B's minimum, judged on the gradient recomputed from U in double
+    precision."""
+    N, ratio = 16, 0.16
+    sc = circle(range_=rho_for(ratio))
+    d_detach = be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=N))).detachment_approach
+    prob = be.build_problem(sc, 1 / N, be.Potential(W, rho_for(ratio)))
+    d = beyond * d_detach
+    U0 = d * prob.face  # every face cell at the wall
+    gtol = 1e-8
+    m = be.minimise(
+        prob, U0, d, True, method="pk", gtol=gtol, restart_on_wall_change=restart, single_precision_directions=single
+    )
+    ref = be.minimise(prob, U0, d, True, method="lbfgsb", gtol=gtol)
+    assert m.converged and not m.peeled
+    E, G, P = prob.energy(m.U, d, True)
+    assert projected_gradient(prob, m.U, G, d, prob.potential.range) <= gtol
+    assert m.energy == pytest.approx(ref.energy, rel=1e-9)
+    # the force to the tolerance's relative size (module docstring), on either branch
+    assert prob.force(P) == pytest.approx(prob.force(ref.P), rel=1e-6)
+    assert (prob.gap(m.U, d).min() == 0.0) == (beyond < 1)
 
 
 def test_no_adhesion_stiffness_equals_griffith_on_the_same_grid():
