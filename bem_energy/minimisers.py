@@ -223,6 +223,11 @@ def _lbfgsb(prob, U0, d, adhesive, gtol, max_iterations, memory) -> Minimum:
     return Minimum(U, P, E, int(res.nit), int(count[0]), bool(ok), pg, "" if ok else str(res.message))
 
 
+def _largest_magnitude(A: np.ndarray) -> float:
+    """max |A| without the temporary array of abs(A)."""
+    return float(max(A.max(), -A.min()))
+
+
 # ---------------------------------------------------------------------------
 # Polonsky-Keer / Rey style projected conjugate gradients
 # ---------------------------------------------------------------------------
@@ -279,7 +284,7 @@ def _projected_cg(
         fixed[face_block] = at_wall_face & (prob.on_face(G) > 0)
         Gf = G.copy()
         Gf[corner][fixed] = 0.0
-        pg = float(np.max(np.abs(Gf))) * prob.self_compliance / (prob.cell * L)
+        pg = _largest_magnitude(Gf) * prob.self_compliance / (prob.cell * L)
         if pg <= gtol and updated and single_precision_directions:
             # judge the minimum on the gradient computed from U in double precision
             E, G, P = prob.energy(U, d, adhesive)
@@ -288,21 +293,27 @@ def _projected_cg(
             fixed[face_block] = at_wall_face & (prob.on_face(G) > 0)
             Gf = G.copy()
             Gf[corner][fixed] = 0.0
-            pg = float(np.max(np.abs(Gf))) * prob.self_compliance / (prob.cell * L)
+            pg = _largest_magnitude(Gf) * prob.self_compliance / (prob.cell * L)
         if pg <= gtol:
             return Minimum(U, P, E, it - 1, evals, True, pg)
         preconditioned = prob.preconditioned(Gf)
         preconditioned[corner][fixed] = 0.0
         zg = float(np.vdot(preconditioned, Gf))
         same_set = not restart_on_wall_change or np.array_equal(fixed, fixed_previous)
+        gs = 0.0
         if direction is not None and same_set and zg_previous > 0:
             beta = max(0.0, float(np.vdot(preconditioned, Gf - Gf_previous)) / zg_previous)
-            direction = -preconditioned + beta * direction
+            # in place (the previous direction is not needed again): beta d - z
+            direction *= beta
+            direction -= preconditioned
             direction[corner][fixed] = 0.0
-            if float(np.vdot(direction, Gf)) >= 0:
+            gs = float(np.vdot(direction, Gf))
+            if gs >= 0:
                 direction = -preconditioned
+                gs = float(np.vdot(Gf, direction))
         else:
             direction = -preconditioned
+            gs = float(np.vdot(Gf, direction))
         fixed_previous, zg_previous, Gf_previous = fixed, zg, Gf
         direction_pressure = direction_pressure_of(direction)
         elastic_curvature = float(np.vdot(direction, direction_pressure))
@@ -310,18 +321,20 @@ def _projected_cg(
         if potential is not None:
             direction_face = prob.on_face(direction)
             curvature += float(np.dot(potential.curvature(prob.gap(U, d)) * direction_face, direction_face))
-        gs = float(np.vdot(Gf, direction))
         # Newton step on the local quadratic model; where the adhesion makes the model concave along
         # the direction, the elastic curvature alone sets a first trial (backtracking follows)
         alpha = -gs / (prob.cell * (curvature if curvature > 0 else elastic_curvature))
         for halvings in range(60):  # noqa: B007  (the count is read after the loop)
-            Un = U + alpha * direction
+            Un = alpha * direction
+            Un += U
             Un_face = prob.on_face(Un)
             if (Un_face < wall).any():
                 Un[corner][face_block] = np.maximum(Un_face, wall)
                 Pn, Pn_updated = None, False
             else:
-                Pn, Pn_updated = P + alpha * direction_pressure, True
+                Pn = alpha * direction_pressure
+                Pn += P
+                Pn_updated = True
             En, Gn, Pn = prob.energy(Un, d, adhesive, Pn)
             evals += 1
             if En <= E + 1e-4 * alpha * gs:
