@@ -9,6 +9,8 @@ an element detaches or a gap closes.
 
 from __future__ import annotations
 
+import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -19,7 +21,19 @@ from .problem import Problem
 from .settings import GriffithSettings
 from .windows import window_for
 
-__all__ = ["ContactSolution", "solve_contact_set", "no_contact"]
+__all__ = ["ContactSolution", "Decision", "solve_contact_set", "no_contact"]
+
+#: cells of a changed contact set around each cell that left or joined it, whose residual the
+#: local warm start (``GriffithSettings.local_warm_start``) solves exactly before CG
+LOCAL_REACH = 3
+#: changes beyond which the local warm start is skipped (its dense solve would grow too large)
+LOCAL_CHANGES = 16
+
+#: ``decide(contact, x1, displacement, error)``: whether a caller has learnt all it needs from
+#: an unfinished flat-face solve on ``contact`` with pressures per approach ``x1`` (each within
+#: ``error`` of the exact ones); ``displacement()`` gives C x1 on the whole grid (it may cost an
+#: operator application, so it is asked for only when the pressures have decided)
+Decision = Callable[[np.ndarray, np.ndarray, Callable[[], np.ndarray], float], bool]
 
 
 @dataclass(frozen=True, eq=False)
@@ -83,11 +97,17 @@ def solve_contact_set(
     settings: GriffithSettings,
     warm_start: ContactSolution | None,
     counters: WorkCounters,
+    decide: Decision | None = None,
 ) -> ContactSolution:
     """Solve C_SS x1 = 1 and (curved faces) C_SS xh = h on the contact set by preconditioned
     CG, warm-started from a neighbouring set's solution; on a smaller window of the grid when
     the set fits into one (``bem_griffith.windows``).  Never raises on non-convergence: the
-    solution and the counters say so."""
+    solution and the counters say so.
+
+    With ``decide`` (flat faces, with the problem's eigenvalue floor), CG stops as soon as
+    ``decide`` accepts an iterate, given the bound ||r||_2 / eigenvalue_floor on its pressures'
+    error (``Problem.eigenvalue_floor``): the solution is then exact only to that bound, and
+    counted as decided, not as converged to rtol."""
     window = window_for(problem, contact)
     if window is None:
         operator, contact_in_window, inverse = problem.operator, contact, problem.inverse_symbol
@@ -108,12 +128,41 @@ def solve_contact_set(
             counters.operator_applications += 1
             return operator.apply_symbol(residual, contact_in_window, inverse)
 
-    def initial_guess(pressures_on_previous_set: np.ndarray | None) -> np.ndarray | None:
+    def initial_guess(
+        pressures_on_previous_set: np.ndarray | None, image_of_previous: np.ndarray, rhs_on_grid: np.ndarray | float
+    ) -> np.ndarray | None:
         if warm_start is None or not warm_start.contact.any():
             return None
         full = np.zeros(problem.face.shape)
         full[warm_start.contact] = pressures_on_previous_set
+        if settings.local_warm_start:
+            local_correction(full, warm_start.contact, image_of_previous, rhs_on_grid)
         return full[contact]
+
+    def local_correction(
+        full: np.ndarray, previous: np.ndarray, image_of_previous: np.ndarray, rhs_on_grid: np.ndarray | float
+    ) -> None:
+        # the previous pressures on the new set leave a residual concentrated around the cells
+        # that left (their pressure is missing) or joined; solving it exactly on the cells
+        # within LOCAL_REACH of them removes most of it before CG starts
+        changed = np.argwhere(previous != contact)
+        if len(changed) == 0 or len(changed) > LOCAL_CHANGES:
+            return
+        near = np.zeros(contact.shape, bool)
+        for i, j in changed:
+            near[max(i - LOCAL_REACH, 0) : i + LOCAL_REACH + 1, max(j - LOCAL_REACH, 0) : j + LOCAL_REACH + 1] = True
+        near &= contact
+        left = previous & ~contact
+        if not near.any():
+            return
+        kernel = problem.operator.kernel
+        Mx, My = kernel.shape
+        Pi, Pj = np.nonzero(near)
+        Ri, Rj = np.nonzero(left)
+        # residual on the patch: b - C (previous pressures on the new set) = b - u_prev + C_PR x_R
+        rhs = rhs_on_grid[near] if isinstance(rhs_on_grid, np.ndarray) else np.full(len(Pi), rhs_on_grid)
+        residual = rhs - image_of_previous[near] + kernel[(Pi[:, None] - Ri) % Mx, (Pj[:, None] - Rj) % My] @ full[left]
+        full[near] += np.linalg.solve(kernel[(Pi[:, None] - Pi) % Mx, (Pj[:, None] - Pj) % My], residual)
 
     def image_on_grid(cg: CGResult) -> np.ndarray:
         if window is None:
@@ -125,6 +174,31 @@ def solve_contact_set(
 
     n = int(contact.sum())
 
+    early_stop = None
+    decided_image: list[np.ndarray] = []
+    floor = problem.eigenvalue_floor
+    if decide is not None and problem.flat and floor is not None:
+        tried_displacements = False
+
+        def early_stop(x: np.ndarray, image: np.ndarray | None, residual_norm: float) -> bool:
+            nonlocal tried_displacements
+            if tried_displacements:  # a windowed solve's displacements left it undecided: finish it
+                return False
+
+            def displacement() -> np.ndarray:
+                nonlocal tried_displacements
+                tried_displacements = window is not None  # a full-grid product: try it once
+                if not decided_image:
+                    decided_image.append(image_on_grid(CGResult(x, 0, 0.0, False, image)))
+                return decided_image[0]
+
+            # the recursive residual drifts from b - A x by round-off: never trust it below that
+            error = max(residual_norm, 1e-13 * math.sqrt(n)) / floor
+            if decide(contact, x, displacement, error):
+                return True
+            decided_image.clear()
+            return False
+
     def solve(rhs: np.ndarray, x0: np.ndarray | None) -> CGResult:
         return conjugate_gradient(
             apply_operator,
@@ -134,15 +208,36 @@ def solve_contact_set(
             maxiter=settings.maxiter,
             precondition=precondition,
             restrict=contact_in_window,
+            early_stop=early_stop,
         )
 
-    unit = solve(np.ones(n), initial_guess(None if warm_start is None else warm_start.pressure_per_approach))
+    unit = solve(
+        np.ones(n),
+        None
+        if warm_start is None
+        else initial_guess(warm_start.pressure_per_approach, warm_start.displacement_per_approach, 1.0),
+    )
+    if unit.stopped_early:
+        counters.record_decided(unit.iterations)
+        return ContactSolution(
+            contact.copy(),
+            unit.x,
+            np.zeros(n),
+            decided_image[0] if decided_image else image_on_grid(unit),
+            np.zeros(problem.face.shape),
+            unit.iterations,
+            unit.residual,
+            True,
+        )
     iterations, residual, converged = unit.iterations, unit.residual, unit.converged
     if problem.flat:
         profile_pressure, profile_displacement = np.zeros(n), np.zeros(problem.face.shape)
     else:
         profile = solve(
-            problem.height[contact], initial_guess(None if warm_start is None else warm_start.profile_pressure)
+            problem.height[contact],
+            None
+            if warm_start is None
+            else initial_guess(warm_start.profile_pressure, warm_start.profile_displacement, problem.height),
         )
         profile_pressure, profile_displacement = profile.x, image_on_grid(profile)
         iterations += profile.iterations

@@ -33,6 +33,10 @@ class WorkCounters:
         Cascades ended early because the remaining area cannot hold (Eq. 14).
     windowed_solves
         Contact-set solves that ran on a smaller window of the grid.
+    decided_solves
+        Contact-set solves of a cascade's passing sets stopped once their error bound showed
+        which elements leave next (``GriffithSettings.decide_early``); counted in
+        ``contact_solves``, not in ``worst_residual``.
     """
 
     operator_applications: int = 0
@@ -44,6 +48,7 @@ class WorkCounters:
     detached_elements: int = 0
     cascades_cut: int = 0
     windowed_solves: int = 0
+    decided_solves: int = 0
 
     def record_solve(self, iterations: int, residual: float, converged: bool) -> None:
         """Account for one contact-set solve (its CG runs together)."""
@@ -52,6 +57,12 @@ class WorkCounters:
         self.worst_residual = max(self.worst_residual, residual)
         if not converged:
             self.unconverged_solves += 1
+
+    def record_decided(self, iterations: int) -> None:
+        """Account for a solve stopped once it had decided the next pass of its cascade."""
+        self.cg_iterations += iterations
+        self.contact_solves += 1
+        self.decided_solves += 1
 
     def stats(self, *, events: int, face_elements: int) -> SolverStats:
         """The method-neutral counters of a finished solve: an unsettled cascade counts as an

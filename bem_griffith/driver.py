@@ -27,7 +27,7 @@ import numpy as np
 
 from contact_scene import Scene, Snapshot
 
-from .contact_set import ContactSolution, no_contact, solve_contact_set
+from .contact_set import ContactSolution, Decision, no_contact, solve_contact_set
 from .counters import WorkCounters
 from .problem import Problem
 from .recording import PullRecorder
@@ -140,6 +140,39 @@ def _certainly_detached(problem: Problem, contact: np.ndarray, approach: float, 
     return False
 
 
+def _gap_tolerance(problem: Problem, approach: float) -> float:
+    return 1e-12 * max(abs(approach), problem.spacing * 1e-6)
+
+
+def early_decision(
+    problem: Problem, approach: float, settings: GriffithSettings, rule: DetachmentRule
+) -> Decision | None:
+    """For a cascade at ``approach`` on a flat face under the paper's rule: a test whether an
+    unfinished solve of a contact set already fixes the cascade's next pass, i.e. every tension
+    and every free gap lies farther from its threshold than its error bound, and some element
+    certainly leaves.  Then the pass (``cascade``) detaches and attaches exactly the elements it
+    would after a full solve.  None where it does not apply."""
+    if not (settings.decide_early and problem.flat and isinstance(rule, PaperRule) and approach != 0):
+        return None
+    threshold = rule.critical_stress * (1 - settings.tie_tolerance)
+    gap_tolerance = _gap_tolerance(problem, approach)
+
+    def decide(contact: np.ndarray, x1: np.ndarray, displacement, error: float) -> bool:
+        tension = -approach * x1  # flat: no profile pressure
+        distance = tension - threshold
+        if not (distance > 0).any() or np.abs(distance).min() <= abs(approach) * error:
+            return False  # nothing certainly leaves (this set may hold), or a tension is too close to call
+        free = problem.face & ~contact
+        if not free.any():
+            return True
+        gap = (displacement()[free] - 1.0) * approach + problem.height[free]
+        gap_error = abs(approach) * problem.kernel_norm * error
+        # each free gap certainly open (> tolerance) or certainly closed (< -tolerance)
+        return bool(np.all((gap > gap_tolerance + gap_error) | (gap < -gap_tolerance - gap_error)))
+
+    return decide
+
+
 def cascade(
     problem: Problem,
     solution: ContactSolution,
@@ -157,11 +190,12 @@ def cascade(
     A free element whose gap is zero (to round-off) re-attaches when the gap is closing along
     the direction of travel: that is the gap event that brought the driver here."""
     rule = PaperRule(problem.critical_stress) if rule is None else rule
+    decide = early_decision(problem, approach, settings, rule)
     for _ in range(4 * problem.face_elements + 10):
         detaching = rule.detaching(solution, approach, settings.tie_tolerance)
         free, slope, offset = gap_coefficients(problem, solution)
         gap = slope * approach + offset
-        gap_tolerance = 1e-12 * max(abs(approach), problem.spacing * 1e-6)
+        gap_tolerance = _gap_tolerance(problem, approach)
         attaching = (gap < -gap_tolerance) | ((gap <= gap_tolerance) & (slope * direction < 0))
         if not detaching.any() and not attaching.any():
             return solution
@@ -174,7 +208,7 @@ def cascade(
         if _certainly_detached(problem, contact, approach, settings):
             counters.cascades_cut += 1
             return no_contact(problem)
-        solution = solve_contact_set(problem, contact, settings, solution, counters)
+        solution = solve_contact_set(problem, contact, settings, solution, counters, decide)
     messages.append(f"cascade at d = {approach:.6g} did not settle")
     counters.unsettled_cascades += 1
     return solution

@@ -27,6 +27,7 @@ class CGResult:
     residual: float
     converged: bool
     image: np.ndarray | None = None
+    stopped_early: bool = False
 
 
 def conjugate_gradient(
@@ -38,13 +39,20 @@ def conjugate_gradient(
     maxiter: int = 1000,
     precondition: Callable[[np.ndarray], np.ndarray] | None = None,
     restrict: np.ndarray | None = None,
+    early_stop: Callable[[np.ndarray, np.ndarray | None, float], bool] | None = None,
+    early_stop_below: float = 1e-3,
 ) -> CGResult:
     """(Preconditioned) CG for A x = b, warm-started from ``x0``.
 
     With ``restrict`` (a boolean mask), ``matvec`` returns the operator's image on the whole
     grid, the system is its restriction to the mask, and the full-grid image C x of the
     solution is accumulated alongside at no extra operator cost.  Never raises on
-    non-convergence: the result says so, with the relative residual reached."""
+    non-convergence: the result says so, with the relative residual reached.
+
+    ``early_stop(x, full_image, residual_norm)`` is asked after every step whose relative
+    residual is at most ``early_stop_below`` (with the absolute residual norm ||b - A x||); when
+    it returns True, CG stops there (``stopped_early``): the caller has learnt what it needed
+    from an iterate whose error it can bound by the residual."""
 
     def apply(v):
         full = matvec(v)
@@ -81,6 +89,9 @@ def conjugate_gradient(
         relative_residual = math.sqrt(_dot(residual, residual)) / b_norm
         if relative_residual <= rtol:
             break
+        if early_stop is not None and relative_residual <= early_stop_below:
+            if early_stop(x, full_image, relative_residual * b_norm):
+                return CGResult(x, iterations, relative_residual, False, full_image, stopped_early=True)
         preconditioned = precondition(residual) if precondition else residual
         r_dot_z_new = _dot(residual, preconditioned)
         direction *= r_dot_z_new / r_dot_z  # beta

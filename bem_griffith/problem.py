@@ -10,7 +10,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from contact_scene import Homogeneous, PowerLawGraded, Scene, SceneError, rasterise, rasterise_periodic, theory
-from halfspace.kernel import graded_influence, love_influence, love_influence_periodic, padded_shape
+from halfspace.kernel import (
+    graded_influence,
+    lattice_symbol,
+    love_influence,
+    love_influence_periodic,
+    padded_shape,
+    point_kernel_transform,
+)
 from halfspace.operator import HalfSpaceOperator
 
 from .criterion import stress_factor
@@ -50,6 +57,14 @@ class Problem:
         (A, k) of the point Green's function g(r) = A / r^(1 + k), for the preconditioner.
     windows
         The memo of sub-grid windows, or None when windows are off.
+    eigenvalue_floor
+        A lower bound on the smallest eigenvalue of every C_SS (half the smallest value of the
+        element lattice's symbol, which bounds the spectrum of every finite section of the
+        lattice's Toeplitz operator from below); None when unknown.  With it a CG residual r
+        bounds the error of the pressures, ||x - x*||_2 <= ||r||_2 / eigenvalue_floor.
+    kernel_norm
+        The Euclidean norm of all influence coefficients: |(C e)_i| <= kernel_norm ||e||_2 at
+        any cell i (Cauchy-Schwarz), which bounds the error of the displacements.
     """
 
     operator: HalfSpaceOperator
@@ -65,6 +80,8 @@ class Problem:
     circle_critical_approach: Callable[[float], float] | None = None
     point_kernel: tuple[float, float] | None = None
     windows: WindowMemo | None = None
+    eigenvalue_floor: float | None = None
+    kernel_norm: float = math.inf
 
     @property
     def cell_area(self) -> float:
@@ -166,6 +183,16 @@ def build_problem(scene: Scene, settings: GriffithSettings) -> Problem:
     inverse = (
         inverse_lattice_symbol(operator.padded_shape, h, point_kernel) if settings.preconditioner == "fourier" else None
     )
+    floor = None
+    if not periodic:
+        # the lattice symbol is positive and smallest at the highest frequencies; the factor 2
+        # covers the aliases the sampled symbol leaves out and frequencies between the samples
+        if inverse is None:
+            transform = point_kernel_transform(point_kernel[1])
+            smallest = float(lattice_symbol(operator.padded_shape, h, lambda q: point_kernel[0] * transform(q)).min())
+        else:
+            smallest = 1.0 / float(inverse.max())
+        floor = 0.5 * smallest
     return Problem(
         operator=operator,
         face=raster.mask,
@@ -180,4 +207,6 @@ def build_problem(scene: Scene, settings: GriffithSettings) -> Problem:
         circle_critical_approach=circle_approach,
         point_kernel=point_kernel,
         windows=WindowMemo() if settings.shrink_window and not periodic else None,
+        eigenvalue_floor=floor if floor is not None and floor > 0 else None,
+        kernel_norm=float(np.sqrt(np.sum(kernel**2))),
     )

@@ -33,6 +33,7 @@ class _GriffithInfoBase(TypedDict):
     press_approach: float  # the approach the press reached
     cascades_cut: int  # cascades ended early by the Eq. 14 certainty bound
     windowed_solves: int  # contact-set solves on a smaller window of the grid
+    decided_solves: int  # solves of a cascade's passing sets stopped once the next pass was certain
     criterion: str  # the detachment rule: "paper" (Eq. 22) or "stress_intensity"
 
 
@@ -59,6 +60,9 @@ class GriffithInfo(_GriffithInfoBase, total=False):
         Detachment cascades ended early by the Eq. 14 certainty bound.
     windowed_solves : int
         Contact-set solves on a smaller window of the grid.
+    decided_solves : int
+        Solves of a cascade's passing contact sets, stopped as soon as a bound on their error
+        showed which elements leave next (``GriffithSettings.decide_early``).
     criterion : str
         The detachment rule: ``"paper"`` (Eq. 22) or ``"stress_intensity"``.
     graded_criterion : str
@@ -150,6 +154,7 @@ def assemble_result(
         "press_approach": pressed_approach,
         "cascades_cut": counters.cascades_cut,
         "windowed_solves": counters.windowed_solves,
+        "decided_solves": counters.decided_solves,
         "criterion": settings.criterion,
         **graded_info,
     }

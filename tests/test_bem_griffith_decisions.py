@@ -1,0 +1,201 @@
+"""Early decisions in the Griffith BEM's cascades (``GriffithSettings.decide_early``).
+
+A cascade's passing contact sets are solved only until a bound on their error fixes the next
+pass.  The bound rests on two facts tested here against dense matrices: no eigenvalue of any
+C_SS lies below ``Problem.eigenvalue_floor``, and no displacement error exceeds
+``kernel_norm`` times the pressures' Euclidean error.  The decisions, and so the contact sets,
+must be those of full solves.
+"""
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+import bem_griffith as bg
+import contact_scene as cs
+from bem_griffith.driver import early_decision
+from bem_griffith.linear import conjugate_gradient
+from bem_griffith.stress_intensity import PaperRule
+
+
+def scene(shape, material=None):
+    return cs.Scene(cs.Indenter(shape), material or cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
+
+
+def settings(N, **kw):
+    return bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N), **kw)
+
+
+def dense_operator(problem):
+    """C on the face's grid as a dense matrix (row-major cells), from the padded kernel."""
+    nx, ny = problem.face.shape
+    Mx, My = problem.operator.kernel.shape
+    rows, cols = np.divmod(np.arange(nx * ny), ny)
+    return problem.operator.kernel[(rows[:, None] - rows[None, :]) % Mx, (cols[:, None] - cols[None, :]) % My]
+
+
+@pytest.mark.parametrize(
+    "material",
+    [cs.Homogeneous(0.75, 0.5), cs.PowerLawGraded(1.0, 0.5, 0.3), cs.PowerLawGraded(1.0, 0.5, -0.5)],
+    ids=["homogeneous", "graded k=0.3", "graded k=-0.5"],
+)
+def test_eigenvalue_floor_bounds_every_contact_submatrix(material):
+    """The smallest eigenvalue of C_SS, for the whole face and for random subsets of it, is
+    at least the floor (rigour), and the floor is not wasteful: within a factor 2.5 of the
+    face's smallest eigenvalue (the lattice symbol's infimum, halved, against a finite
+    section's, which lies just above the infimum)."""
+    problem = bg.solver.build_problem(scene(cs.Circle(1.0), material), settings(9))
+    C = dense_operator(problem)
+    face = problem.face.ravel()
+    smallest = np.linalg.eigvalsh(C[np.ix_(face, face)])[0]
+    assert problem.eigenvalue_floor <= smallest <= 2.5 * problem.eigenvalue_floor
+    rng = np.random.default_rng(3)
+    for share in (0.9, 0.5, 0.1):
+        subset = face & (rng.random(face.size) < share)
+        assert np.linalg.eigvalsh(C[np.ix_(subset, subset)])[0] >= problem.eigenvalue_floor
+    # Cauchy-Schwarz: every row of C is no longer than all the coefficients together
+    assert np.linalg.norm(C, axis=1).max() <= problem.kernel_norm
+
+
+def test_cg_stops_when_asked_and_only_below_its_threshold():
+    rng = np.random.default_rng(0)
+    Q = rng.random((30, 30))
+    A = Q @ Q.T + 30 * np.eye(30)
+    b = rng.random(30)
+    asked = []
+
+    def stop(x, image, residual_norm):
+        asked.append(residual_norm / np.linalg.norm(b))
+        return residual_norm < 1e-6 * np.linalg.norm(b)
+
+    out = conjugate_gradient(lambda v: A @ v, b, rtol=1e-12, early_stop=stop, early_stop_below=1e-3)
+    assert out.stopped_early and not out.converged
+    assert asked and max(asked) <= 1e-3 and out.residual < 1e-6
+    assert np.linalg.norm(b - A @ out.x) == pytest.approx(out.residual * np.linalg.norm(b), rel=1e-6)
+    full = conjugate_gradient(lambda v: A @ v, b, rtol=1e-12)
+    assert full.converged and not full.stopped_early
+
+
+@pytest.fixture(scope="module")
+def small_flat():
+    sc = scene(cs.Circle(1.0))
+    st = settings(6)
+    problem = bg.solver.build_problem(sc, st)
+    return problem, st, PaperRule(problem.critical_stress)
+
+
+def test_a_tension_within_its_error_bound_of_sigma_c_leaves_the_pass_undecided(small_flat):
+    """One cell above sigma_c by a margin m, the others far below, no free cell: decided when
+    the tensions' error bound |d| error is below m, not when it reaches m; never when no cell
+    is above sigma_c."""
+    problem, st, rule = small_flat
+    d = -1.0
+    decide = early_decision(problem, d, st, rule)
+    contact = problem.face.copy()
+    n = int(contact.sum())
+    threshold = rule.critical_stress * (1 - st.tie_tolerance)
+    margin = 1e-3 * threshold
+    x1 = np.full(n, 0.5 * threshold / abs(d))
+    x1[n // 2] = (threshold + margin) / abs(d)
+
+    def no_displacement():
+        raise AssertionError("no free cell: the gaps are not needed")
+
+    assert decide(contact, x1, no_displacement, 0.9 * margin / abs(d))
+    assert not decide(contact, x1, no_displacement, 1.1 * margin / abs(d))
+    x1[n // 2] = (threshold - margin) / abs(d)
+    assert not decide(contact, x1, no_displacement, 0.0)
+
+
+def test_a_free_gap_within_its_error_bound_of_closing_leaves_the_pass_undecided(small_flat):
+    """A detached cell whose gap is within its error bound (|d| kernel_norm error) of the gap
+    tolerance may re-attach: undecided until the bound is below the gap."""
+    problem, st, rule = small_flat
+    d = -1.0
+    decide = early_decision(problem, d, st, rule)
+    contact = problem.face.copy()
+    free_cell = tuple(np.argwhere(contact)[0])
+    contact[free_cell] = False
+    n = int(contact.sum())
+    threshold = rule.critical_stress * (1 - st.tie_tolerance)
+    x1 = np.full(n, 0.5 * threshold / abs(d))
+    x1[n // 2] = 2 * threshold / abs(d)  # certainly leaves
+    gap = 1e-4
+    u1 = np.ones(problem.face.shape)
+    u1[free_cell] = 1.0 - gap / abs(d)  # gap = (u1 - 1) d
+
+    error_closing = 2 * gap / (abs(d) * problem.kernel_norm)
+    assert not decide(contact, x1, lambda: u1, error_closing)
+    assert decide(contact, x1, lambda: u1, 0.25 * error_closing)
+
+
+def test_early_decisions_and_local_warm_starts_keep_every_contact_set():
+    """A star (tips peel first, long cascades) and a 4:1 rectangle: with early decisions and
+    local warm starts the same events, solves, contact sets and forces as with every set
+    solved to rtol from the plain warm start (to the CG tolerance), at markedly fewer CG
+    iterations."""
+    for sc, N in [(scene(cs.Star(5, 1.0, 0.45)), 24), (scene(cs.Rectangle(4.0, 1.0)), 12)]:
+        a = bg.solve(sc, settings(N))
+        b = bg.solve(sc, settings(N, decide_early=False, local_warm_start=False))
+        assert a.info["decided_solves"] > 0 and b.info["decided_solves"] == 0
+        assert a.info["events"] == b.info["events"] and a.info["solves"] == b.info["solves"]
+        assert np.array_equal(a.curve.contact_area, b.curve.contact_area)
+        assert np.array_equal(a.last_stable.contact, b.last_stable.contact)
+        assert a.pulloff_force == pytest.approx(b.pulloff_force, rel=1e-9)
+        assert a.detachment_approach == pytest.approx(b.detachment_approach, rel=1e-8)
+        assert np.allclose(a.curve.force, b.curve.force, rtol=1e-8, atol=1e-9 * b.pulloff_force)
+        assert a.iterations < 0.75 * b.iterations
+        assert a.converged and b.converged
+
+
+@pytest.mark.parametrize("curved", [False, True], ids=["flat", "sphere"])
+def test_local_warm_start_removes_most_of_the_residual_a_change_leaves(curved):
+    """Two edge cells leave a solved set (and, curved, one free cell joins): started from the
+    previous pressures corrected near the change, CG needs at least two fewer iterations for
+    the same solution (to rtol) than from the previous pressures alone."""
+    sc = scene(cs.Circle(1.0))
+    if curved:
+        sc = dataclasses.replace(
+            sc, indenter=cs.Indenter(cs.Circle(1.0), cs.Sphere(3.0)), loading=cs.Loading(press_approach=0.05)
+        )
+    st = settings(16)
+    problem = bg.solver.build_problem(sc, st)
+    counters = bg.counters.WorkCounters()
+    first = problem.face if not curved else problem.face & (problem.height < 0.6 * problem.height[problem.face].max())
+    before = bg.contact_set.solve_contact_set(problem, first.copy(), st, None, counters)
+    after = first.copy()
+    edge = np.argwhere(first)
+    after[tuple(edge[0])] = after[tuple(edge[-1])] = False
+    if curved:
+        joining = np.argwhere(problem.face & ~first)[0]
+        after[tuple(joining)] = True
+    plain = bg.contact_set.solve_contact_set(
+        problem, after, dataclasses.replace(st, local_warm_start=False), before, counters
+    )
+    local = bg.contact_set.solve_contact_set(problem, after, st, before, counters)
+    assert local.iterations <= plain.iterations - 2
+    assert np.allclose(
+        local.pressure_per_approach, plain.pressure_per_approach, rtol=0, atol=1e-8 * plain.pressure_per_approach.max()
+    )
+    assert np.allclose(
+        local.profile_pressure,
+        plain.profile_pressure,
+        rtol=0,
+        atol=1e-8 * np.abs(plain.profile_pressure).max(initial=1.0),
+    )
+
+
+def test_early_decisions_do_not_apply_to_curved_faces_or_the_stress_intensity_rule(small_flat):
+    problem, st, rule = small_flat
+    assert early_decision(problem, -1.0, dataclasses.replace(st, decide_early=False), rule) is None
+    assert early_decision(problem, 0.0, st, rule) is None
+    curved = bg.solver.build_problem(
+        dataclasses.replace(
+            scene(cs.Circle(1.0)),
+            indenter=cs.Indenter(cs.Circle(1.0), cs.Sphere(2.0)),
+            loading=cs.Loading(press_approach=0.05),
+        ),
+        st,
+    )
+    assert early_decision(curved, -1.0, st, rule) is None
