@@ -2,13 +2,16 @@
 
     python benchmarks/bench_griffith_pulloff.py [--star512] [--update]
 
-For each case: median wall time of the pull-off, the median time of one bare padded FFT
-convolution (scipy.fft rfft2 -> multiply -> irfft2) at the same padded size, their ratio
-(the "matvec-equivalents"), and the operator applications actually counted.  A second
+For each case: median wall and CPU time of the pull-off, the median time of one bare padded
+FFT convolution (scipy.fft rfft2 -> multiply -> irfft2) at the same padded size, the ratio of
+the CPU time to it (the "matvec-equivalents"; the CPU time, because on a shared machine the
+wall time also counts other processes) and the operator applications actually counted.  A second
 table shows which solver choices change the answer (they must not) and what they cost, with
 the CG iterations per contact solve: on a circle, a 4:1 rectangle (whose padded window's
 symbol has negative modes, so the preconditioner must be the lattice's) and a star, whose tips
-detach first so that its later solves fit into smaller windows.  ``--star512`` adds the
+detach first so that its later solves fit into smaller windows (the rows "every set to rtol"
+and "plain warm start" switch off the early decisions and the local warm start, "both" is the
+solver before them).  ``--star512`` adds the
 paper's size, the five-ray star on a 512^2 grid over its bounding box (a quarter of an hour or
 more).  ``--update`` writes docs/performance_griffith_pulloff.json and
 docs/performance_griffith_choices.json (rendered into docs/performance.md by
@@ -38,20 +41,36 @@ def bare_conv_time(nx, ny) -> float:
 
 
 def time_solve(scene, settings, repeat):
-    ts, res = [], None
+    """Median wall and CPU seconds of ``repeat`` solves, and the last result.  The CPU time is
+    what the ratios use: on a shared machine the wall time also counts other processes."""
+    ts, cpu, res = [], [], None
     for _ in range(repeat):
-        t = time.perf_counter()
+        t, c = time.perf_counter(), time.process_time()
         res = bg.solve(scene, settings)
         ts.append(time.perf_counter() - t)
-    return float(np.median(ts)), res
+        cpu.append(time.process_time() - c)
+    return float(np.median(ts)), float(np.median(cpu)), res
 
 
-COST_HEADERS = ["case", "N/radius", "grid", "wall s", "bare conv ms", "matvec-eq", "matvecs", "solves", "events", "F_A"]
+COST_HEADERS = [
+    "case",
+    "N/radius",
+    "grid",
+    "wall s",
+    "cpu s",
+    "bare conv ms",
+    "matvec-eq",
+    "matvecs",
+    "solves",
+    "events",
+    "F_A",
+]
 CHOICE_HEADERS = [
     "case",
     "choice",
     "wall s",
-    "/ default",
+    "cpu s",
+    "cpu / default",
     "matvecs",
     "CG it/solve",
     "F_A",
@@ -74,7 +93,7 @@ def main(star512=False, update=False):
     rows = []
     for name, sc, N, rep in cases:
         st = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N))
-        wall, r = time_solve(sc, st, rep)
+        wall, cpu, r = time_solve(sc, st, rep)
         nx, ny = r.info["grid"]
         tb = bare_conv_time(nx, ny)
         rows.append(
@@ -83,8 +102,9 @@ def main(star512=False, update=False):
                 f"{N:.0f}",
                 f"{nx}x{ny}",
                 f"{wall:.2f}",
+                f"{cpu:.2f}",
                 f"{tb * 1e3:.2f}",
-                f"{wall / tb:.0f}",
+                f"{cpu / tb:.0f}",
                 r.info["matvecs"],
                 r.info["solves"],
                 r.info["events"],
@@ -104,22 +124,26 @@ def main(star512=False, update=False):
     ]:
         rows, ref = [], None
         for label, kw in [
-            ("default (fourier, cut cascade, window)", {}),
+            ("default (fourier, cut cascade, window, early decisions)", {}),
             ("no preconditioner", {"preconditioner": "none"}),
             ("full cascade", {"stop_when_certainly_detached": False}),
+            ("every set to rtol", {"decide_early": False}),
+            ("plain warm start", {"local_warm_start": False}),
+            ("both (the previous solver)", {"decide_early": False, "local_warm_start": False}),
             ("whole-grid FFTs", {"shrink_window": False}),
             ("rtol 1e-8", {"rtol": 1e-8}),
         ]:
-            wall, r = time_solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N), **kw), 3)
+            wall, cpu, r = time_solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N), **kw), 3)
             if ref is None:
-                ref, ref_wall = r, wall
+                ref, ref_cpu = r, cpu
             same = np.array_equal(r.curve.contact_area, ref.curve.contact_area)
             rows.append(
                 [
                     f"{name}, {N:.0f} per radius",
                     label,
                     f"{wall:.2f}",
-                    f"{wall / ref_wall:.2f}",
+                    f"{cpu:.2f}",
+                    f"{cpu / ref_cpu:.2f}",
                     r.info["matvecs"],
                     f"{r.iterations / max(r.info['solves'], 1):.1f}",
                     f"{r.pulloff_force:.10g}",
