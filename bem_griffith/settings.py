@@ -93,7 +93,11 @@ class GriffithSettings:
         bodies).  ``"stress_intensity"``: a front cell detaches when the stress-intensity
         factor fitted to the pressure 8-24 or more cells behind it reaches sqrt(2 E* w)
         (``bem_griffith.stress_intensity``); it removes the staircase bias of Eq. 22 on
-        curved and rotated edges.  Flat punches on homogeneous, non-periodic half-spaces only.
+        curved and rotated edges, so it converges on smooth fronts (Kendall's circle), but
+        on faces with corners its pull-off comes out low (square and triangle: 1-2 % below
+        the energy BEM), because its fit over-estimates K while a detached corner is smaller
+        than the fitting window and a detached cell never re-attaches.  Flat punches on
+        homogeneous, non-periodic half-spaces only.
 
     Raises
     ------
