@@ -262,7 +262,7 @@ def _projected_cg(
     wall = _lower_bound(prob, d)
     U = U0.copy()
     U[corner][face_block] = np.maximum(prob.on_face(U), wall)
-    E, G, P = prob.energy(U, d, adhesive)
+    E, G, P, curvature_face = prob.energy_and_curvature(U, d, adhesive)
     direction = None
     Gf_previous = None
     zg_previous = 0.0  # no previous step: the first direction is steepest descent
@@ -287,7 +287,7 @@ def _projected_cg(
         pg = _largest_magnitude(Gf) * prob.self_compliance / (prob.cell * L)
         if pg <= gtol and updated and single_precision_directions:
             # judge the minimum on the gradient computed from U in double precision
-            E, G, P = prob.energy(U, d, adhesive)
+            E, G, P, curvature_face = prob.energy_and_curvature(U, d, adhesive)
             evals += 1
             updated = False
             fixed[face_block] = at_wall_face & (prob.on_face(G) > 0)
@@ -318,9 +318,10 @@ def _projected_cg(
         direction_pressure = direction_pressure_of(direction)
         elastic_curvature = float(np.vdot(direction, direction_pressure))
         curvature = elastic_curvature
-        if potential is not None:
+        if potential is not None and curvature_face is not None:
+            # phi'' at U, from the evaluation that produced U's energy (one exponential per evaluation)
             direction_face = prob.on_face(direction)
-            curvature += float(np.dot(potential.curvature(prob.gap(U, d)) * direction_face, direction_face))
+            curvature += float(np.dot(curvature_face * direction_face, direction_face))
         # Newton step on the local quadratic model; where the adhesion makes the model concave along
         # the direction, the elastic curvature alone sets a first trial (backtracking follows)
         alpha = -gs / (prob.cell * (curvature if curvature > 0 else elastic_curvature))
@@ -335,7 +336,7 @@ def _projected_cg(
                 Pn = alpha * direction_pressure
                 Pn += P
                 Pn_updated = True
-            En, Gn, Pn = prob.energy(Un, d, adhesive, Pn)
+            En, Gn, Pn, curvature_face_n = prob.energy_and_curvature(Un, d, adhesive, Pn)
             evals += 1
             if En <= E + 1e-4 * alpha * gs:
                 break
@@ -351,11 +352,11 @@ def _projected_cg(
             # iteration has stagnated (l_c ~ Delta near a snap took 50 evaluations per step and
             # 150,000 in one minimisation before this stop)
             return Minimum(Un, Pn, En, it, evals, pg <= gtol, pg, "stagnated at round-off in the energy")
-        U, P, E, G = Un, Pn, En, Gn
+        U, P, E, G, curvature_face = Un, Pn, En, Gn, curvature_face_n
         updated = Pn_updated
         if it % 50 == 0:
             # refresh P from U: the incremental update accumulates round-off
-            E, G, P = prob.energy(U, d, adhesive)
+            E, G, P, curvature_face = prob.energy_and_curvature(U, d, adhesive)
             updated = False
     return Minimum(U, P, E, max_iterations, evals, False, pg, "iteration limit")
 

@@ -117,7 +117,10 @@ class EnergyProblem:
         numpy.ndarray
             The pressures on the padded grid.
         """
-        return sfft.irfft2(sfft.rfft2(U) / self.symbol, s=self.padded)
+        # in place, and the transform may overwrite its input: no complex temporaries (the same numbers)
+        F = sfft.rfft2(U)
+        F /= self.symbol
+        return sfft.irfft2(F, s=self.padded, overwrite_x=True)
 
     def displacement(self, P: np.ndarray) -> np.ndarray:
         """U = C P on the padded grid.
@@ -132,7 +135,9 @@ class EnergyProblem:
         numpy.ndarray
             The surface displacements (down > 0) on the padded grid.
         """
-        return sfft.irfft2(sfft.rfft2(P) * self.symbol, s=self.padded)
+        F = sfft.rfft2(P)
+        F *= self.symbol
+        return sfft.irfft2(F, s=self.padded, overwrite_x=True)
 
     def pressure_single(self, U: np.ndarray) -> np.ndarray:
         """C^-1 U in single precision (returned in double): a search direction's pressure.
@@ -152,7 +157,9 @@ class EnergyProblem:
             C^-1 U, float64, on the padded grid.
         """
         U32 = U.astype(np.float32)
-        return sfft.irfft2(sfft.rfft2(U32) / self.symbol_single, s=self.padded).astype(np.float64)
+        F = sfft.rfft2(U32)
+        F /= self.symbol_single
+        return sfft.irfft2(F, s=self.padded, overwrite_x=True).astype(np.float64)
 
     def preconditioned(self, G: np.ndarray) -> np.ndarray:
         """C G in single precision (returned in double): the projected CG's preconditioner.
@@ -172,7 +179,9 @@ class EnergyProblem:
             C G, float64, on the padded grid.
         """
         G32 = G.astype(np.float32)
-        return sfft.irfft2(sfft.rfft2(G32) * self.symbol_single, s=self.padded).astype(np.float64)
+        F = sfft.rfft2(G32)
+        F *= self.symbol_single
+        return sfft.irfft2(F, s=self.padded, overwrite_x=True).astype(np.float64)
 
     def on_face(self, A: np.ndarray) -> np.ndarray:
         """The face cells' entries of a padded-grid array, 1-D in the order of ``A[face]``.
@@ -235,15 +244,35 @@ class EnergyProblem:
         P : numpy.ndarray
             The pressures C^-1 U.
         """
+        E, G, P, _ = self.energy_and_curvature(U, d, adhesive, P)
+        return E, G, P
+
+    def energy_and_curvature(self, U: np.ndarray, d: float, adhesive: bool, P: np.ndarray | None = None):
+        """:meth:`energy` and the potential's curvature phi''(g) on the face, from one exponential.
+
+        Parameters
+        ----------
+        U, d, adhesive, P
+            As for :meth:`energy`.
+
+        Returns
+        -------
+        energy, gradient, P
+            As for :meth:`energy`.
+        curvature : numpy.ndarray or None
+            phi'' at the face cells' gaps (1-D, face order); None without the adhesive term.
+        """
         if P is None:
             P = self.pressure(U)
         E = 0.5 * float(np.vdot(U, P))
         G = P.copy()
+        curvature = None
         if adhesive and self.potential is not None:
-            g = self.gap(U, d)
-            E += float(np.sum(self.potential.energy(g)))
-            self.crop(G)[self.face_block] += self.potential.stress(g)
-        return self.cell * E, self.cell * G, P
+            phi, stress, curvature = self.potential.evaluate(self.gap(U, d))
+            E += float(np.sum(phi))
+            self.crop(G)[self.face_block] += stress
+        G *= self.cell  # in place: G is a fresh array
+        return self.cell * E, G, P, curvature
 
     def force(self, P: np.ndarray) -> float:
         """The normal force on the punch: cell times the sum of P over the face.

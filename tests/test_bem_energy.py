@@ -86,6 +86,35 @@ def test_projected_cg_variants_reach_the_minimum_through_a_changing_wall_set(res
     assert (prob.gap(m.U, d).min() == 0.0) == (beyond < 1)
 
 
+@pytest.mark.parametrize("kind", ["exponential", "maugis_dugdale"])
+def test_potential_terms_from_one_exponential_equal_the_separate_ones(kind):
+    """phi, phi' and phi'' from one exponential are the separate methods' numbers bit for bit
+    (the projected CG's path must not change), and they are the potential's derivatives:
+    phi' = dphi/dg, phi'' = dphi'/dg by central differences (second order, h = 1e-5 rho)."""
+    rho = rho_for(0.16)
+    pot = be.Potential(W, rho, kind)
+    g = np.linspace(0.0, 4 * rho, 41)[1:]  # away from the Maugis-Dugdale kink's cell edges
+    g = g[np.abs(g - rho) > 0.05 * rho]
+    phi, stress, curvature = pot.evaluate(g)
+    assert np.array_equal(phi, pot.energy(g))
+    assert np.array_equal(stress, pot.stress(g))
+    assert np.array_equal(curvature, pot.curvature(g))
+    h = 1e-5 * rho
+    assert stress == pytest.approx((pot.energy(g + h) - pot.energy(g - h)) / (2 * h), rel=1e-8, abs=1e-9 * W / rho)
+    dstress = (pot.stress(g + h) - pot.stress(g - h)) / (2 * h)
+    assert curvature == pytest.approx(dstress, rel=1e-8, abs=1e-9 * W / rho**2)
+    # the problem's energy with the curvature is the energy, and that curvature at the face's gaps
+    sc = circle(range_=rho, potential=kind)
+    prob = be.build_problem(sc, 1 / 8, pot)
+    U = np.random.default_rng(3).uniform(0, rho, prob.padded) * prob.face
+    d = -0.5 * rho
+    E, G, P = prob.energy(U, d, True)
+    E2, G2, P2, C2 = prob.energy_and_curvature(U, d, True)
+    assert E2 == E and np.array_equal(G2, G) and np.array_equal(P2, P)
+    assert np.array_equal(C2, pot.curvature(prob.gap(U, d)))
+    assert prob.energy_and_curvature(U, d, False)[3] is None
+
+
 def test_no_adhesion_stiffness_equals_griffith_on_the_same_grid():
     sc = circle(work=0.0)
     N = 16
