@@ -252,13 +252,23 @@ class EnergyProblem:
 
         Parameters
         ----------
-        U, d, adhesive, P
-            As for :meth:`energy`.
+        U : numpy.ndarray
+            Surface displacements on the padded grid.
+        d : float
+            Approach of the punch.
+        adhesive : bool
+            Whether the adhesive potential is switched on.
+        P : numpy.ndarray or None, optional
+            C^-1 U when already known (saves two FFTs).
 
         Returns
         -------
-        energy, gradient, P
-            As for :meth:`energy`.
+        energy : float
+            Pi, as for :meth:`energy`.
+        gradient : numpy.ndarray
+            dPi/dU on the padded grid.
+        P : numpy.ndarray
+            The pressures C^-1 U.
         curvature : numpy.ndarray or None
             phi'' at the face cells' gaps (1-D, face order); None without the adhesive term.
         """
