@@ -272,6 +272,16 @@ def _projected_cg(
     most_in_contact = 0
     direction_pressure_of = prob.pressure_single if single_precision_directions else prob.pressure
     updated = False  # P, E and G carry incremental updates since they were last computed from U
+
+    def free_gradient(G, at_wall_face):
+        # cells held at the wall (pressed onto it), on the raster's corner; the gradient without
+        # them and its scaled largest magnitude, the projected-gradient measure of convergence
+        fixed = np.zeros(face_block.shape, bool)
+        fixed[face_block] = at_wall_face & (prob.on_face(G) > 0)
+        Gf = G.copy()
+        Gf[corner][fixed] = 0.0
+        return fixed, Gf, _largest_magnitude(Gf) * prob.self_compliance / (prob.cell * L)
+
     for it in range(1, max_iterations + 1):
         at_wall_face = prob.on_face(U) <= wall + 1e-13 * L
         if peel_fraction is not None:
@@ -279,21 +289,13 @@ def _projected_cg(
             most_in_contact = max(most_in_contact, in_contact)
             if in_contact < (1.0 - peel_fraction) * most_in_contact:
                 return Minimum(U, P, E, it - 1, evals, False, math.inf, "peeling off", peeled=True)
-        # cells held at the wall (pressed onto it), on the raster's corner
-        fixed = np.zeros(face_block.shape, bool)
-        fixed[face_block] = at_wall_face & (prob.on_face(G) > 0)
-        Gf = G.copy()
-        Gf[corner][fixed] = 0.0
-        pg = _largest_magnitude(Gf) * prob.self_compliance / (prob.cell * L)
+        fixed, Gf, pg = free_gradient(G, at_wall_face)
         if pg <= gtol and updated and single_precision_directions:
             # judge the minimum on the gradient computed from U in double precision
             E, G, P, curvature_face = prob.energy_and_curvature(U, d, adhesive)
             evals += 1
             updated = False
-            fixed[face_block] = at_wall_face & (prob.on_face(G) > 0)
-            Gf = G.copy()
-            Gf[corner][fixed] = 0.0
-            pg = _largest_magnitude(Gf) * prob.self_compliance / (prob.cell * L)
+            fixed, Gf, pg = free_gradient(G, at_wall_face)
         if pg <= gtol:
             return Minimum(U, P, E, it - 1, evals, True, pg)
         preconditioned = prob.preconditioned(Gf)
