@@ -154,7 +154,7 @@ def early_decision(
     would after a full solve.  None where it does not apply."""
     if not (settings.decide_early and problem.flat and isinstance(rule, PaperRule) and approach != 0):
         return None
-    threshold = rule.critical_stress * (1 - settings.tie_tolerance)
+    threshold = rule.threshold(settings.tie_tolerance)
     gap_tolerance = _gap_tolerance(problem, approach)
 
     def decide(contact: np.ndarray, x1: np.ndarray, displacement, error: float) -> bool:

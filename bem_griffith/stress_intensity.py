@@ -106,10 +106,15 @@ class PaperRule:
         out[loaded] = (profile[loaded] - self.critical_stress) / per_approach[loaded]
         return out
 
+    def threshold(self, tie_tolerance: float) -> float:
+        """The tension at or above which a cell detaches: sigma_c less the tie tolerance, so
+        that cells within round-off of the largest tension go together."""
+        return self.critical_stress * (1 - tie_tolerance)
+
     def detaching(self, solution, approach: float, tie_tolerance: float) -> np.ndarray:
         tension = -solution.pressure(approach)
         largest = tension.max() if tension.size else -np.inf
-        threshold = self.critical_stress * (1 - tie_tolerance)
+        threshold = self.threshold(tie_tolerance)
         return tension >= threshold if largest >= threshold else np.zeros(tension.shape, bool)
 
 
@@ -284,7 +289,7 @@ class StressIntensityRule:
 
     def detaching(self, solution, approach: float, tie_tolerance: float) -> np.ndarray:
         fit = self.front(solution)
-        by_paper = -solution.pressure(approach) >= self.paper.critical_stress * (1 - tie_tolerance)
+        by_paper = -solution.pressure(approach) >= self.paper.threshold(tie_tolerance)
         by_paper[fit.cells] = False
         measure = np.full(solution.pressure_per_approach.shape, -np.inf)
         measure[by_paper] = np.inf
