@@ -87,14 +87,15 @@ class EnergySettings:
         F_A, moves within the method's path noise (benchmarks/bench_energy_zero_range.py).
     single_precision_directions : bool, optional
         Projected CG only: the pressure of each search direction from single-precision FFTs
-        (about three times cheaper than double precision on these grids), with the pressure
+        (cheaper than double precision: ``benchmarks/bench_matvec.py``), with the pressure
         recomputed in double precision every 50 iterations and before a minimum is accepted,
-        so that convergence is judged on the double-precision gradient.  It made the finest
-        range of the zero-range sequence 1.4x faster (circle and square, l_c = 0.01 a) and moved
-        its F_A by 1e-8, and it is on in :func:`sequence_energy_settings`.  False by default:
-        single-precision rounding does not scale with the problem, so a problem scaled in its
-        units then follows another path and its F_A agrees to the minimisers' tolerance (1e-8
-        measured) instead of to double-precision round-off (1e-11).
+        so that convergence is judged on the double-precision gradient.  On in
+        :func:`sequence_energy_settings`, where the finest ranges dominate the time and their
+        forces move far less than the method's path noise
+        (``benchmarks/bench_energy_zero_range.py``).  False by default: single-precision
+        rounding does not scale with the problem, so a problem scaled in its units then follows
+        another path and its F_A agrees to the minimisers' tolerance instead of to
+        double-precision round-off.
 
     Raises
     ------
@@ -132,7 +133,7 @@ def sequence_energy_settings() -> EnergySettings:
     (benchmarks/study_energy_noise.py), and a 4x looser one moved the coarse sequences'
     limits by 1e-3 where this keeps every range's force.  The search directions' pressures
     are computed in single precision (``single_precision_directions``): the finest ranges
-    dominate a sequence's time, and this moves their forces by about 1e-8."""
+    dominate a sequence's time, and this moves their forces far less than the path noise."""
     return EnergySettings(locate_detachment=False, single_precision_directions=True)
 
 
