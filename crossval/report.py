@@ -21,12 +21,38 @@ from .runner import Job, run_jobs
 from .study import study
 from .suite import SUITE
 
-__all__ = ["Report", "report", "QUICK", "FULL"]
+__all__ = ["Report", "report", "report_jobs", "QUICK", "FULL"]
 
 #: resolutions per method for the quick (< 3 min on 2 cores) and full report
 #: (bem_energy in the zero-range limit: elements per process zone)
 QUICK = {m.name: m.sweeps.quick for m in METHODS.values()}
 FULL = {m.name: m.sweeps.full for m in METHODS.values()}
+
+
+def report_jobs(names, *, quick: bool = True) -> list[tuple[str, Job]]:
+    """The solves of a report over the suite scenes ``names``, as (scene name, job): every
+    applicable method over its sweep and, in the full report, at its default resolution
+    (``resolution=None``) where ``Sweeps.full_default`` asks for it.  Those defaults come
+    first: they are the longest solves, and a pool that starts them first finishes soonest.
+
+    Parameters
+    ----------
+    names : iterable of str
+        Names of suite scenes (:data:`crossval.SUITE`).
+    quick : bool, optional
+        The quick sweeps (:data:`QUICK`) instead of the full ones (:data:`FULL`).
+
+    Returns
+    -------
+    list of (str, crossval.runner.Job)
+        The jobs in the order a pool should start them.
+    """
+    names = list(names)
+    res_sets = QUICK if quick else FULL
+    methods = {s: applicable_methods(SUITE[s]) for s in names}
+    at_default = [] if quick else [(s, m) for s in names for m in methods[s] if m.sweeps.full_default]
+    defaults = [(s, Job(SUITE[s], m.name, None)) for s, m in at_default]
+    return defaults + [(s, Job(SUITE[s], m.name, r)) for s in names for m in methods[s] for r in res_sets[m.name]]
 
 
 @dataclass(frozen=True, eq=False)
@@ -158,7 +184,9 @@ def report(
 
     Each scene runs through every method that applies to it, over the method's quick or full
     sweep (:data:`QUICK`, :data:`FULL`); each method's error is studied against the scene's best
-    reference (:func:`crossval.study`), and the finest run of each method is checked against the
+    reference (:func:`crossval.study`), and the finest run of each method (in the full report,
+    its default where ``Sweeps.full_default`` says so: the energy BEM's accurate zero-range
+    sequence) is checked against the
     closed forms and the other methods (:func:`crossval.compare`); on flat faces each grid method
     also runs on the other's grid without adhesion, which holds their stiffnesses to the kernels'
     measured same-grid difference.  The page shows the agreement map and, per scene, the results,
@@ -203,8 +231,10 @@ def report(
     res_sets = QUICK if quick else FULL
     names = list(scenes) if scenes is not None else list(SUITE)
     cache = ResultCache(cache_dir)
-    jobs = [Job(SUITE[s], m.name, r) for s in names for m in applicable_methods(SUITE[s]) for r in res_sets[m.name]]
-    run_jobs(jobs, workers=workers, scheduler=scheduler, cache=cache, callback=callback)
+    named = report_jobs(names, quick=quick)
+    solved = run_jobs([j for _, j in named], workers=workers, scheduler=scheduler, cache=cache, callback=callback)
+    # the results at a method's default resolution, checked in place of its sweep's finest
+    defaults = {(s, j.method): r for (s, j), r in zip(named, solved, strict=True) if j.resolution is None}
 
     studies, checks, finest = {}, {}, {}
     for s in names:
@@ -213,7 +243,7 @@ def report(
         fin = {}
         for m in dict.fromkeys(r.method for r in st.rows):
             rmax = max(r.resolution for r in st.rows if r.method == m)
-            fin[m] = st.results[(m, rmax)]
+            fin[m] = defaults.get((s, m)) or st.results[(m, rmax)]
         finest[s] = fin
     # each grid method also on the other's grid, without adhesion: the kernels' same-grid check
     partners = [(s, key, job) for s in names for key, job in same_grid_partners(SUITE[s], finest[s]).items()]

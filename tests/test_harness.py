@@ -190,3 +190,46 @@ def test_full_report_includes_the_extreme_cases_table(tmp_path, monkeypatch):
     assert "Stiff and extreme cases" in page and "+2.58e-05" in page
     data = _strict_json((tmp_path / "r" / "results.json").read_text())
     assert data["extremes"] == [dict(zip(ex.HEADERS, row, strict=True))]
+
+
+def test_full_report_starts_the_methods_defaults_first():
+    """The full report runs the energy BEM's accurate (default) zero-range sequence on every
+    face it applies to, before the sweeps; the quick report does not."""
+    from crossval.report import report_jobs
+
+    full = report_jobs(["kendall_circle", "square", "graded_circle_k0.5"], quick=False)
+    defaults = [(s, j.method) for s, j in full if j.resolution is None]
+    assert defaults == [("kendall_circle", "bem_energy"), ("square", "bem_energy")]
+    assert all(j.resolution is None for _, j in full[: len(defaults)])
+    assert all(j.resolution is not None for _, j in report_jobs(["kendall_circle", "square"], quick=True))
+
+
+def test_full_report_checks_the_default_result_not_the_sweeps_finest(tmp_path, monkeypatch):
+    """The energy BEM's result at its default resolution is what the full report checks: a
+    stored default with a pull-off force 20 % off fails the check against Kendall, while the
+    coarse sweep's own finest would have passed (the quick report on the same cache)."""
+    import dataclasses
+
+    from crossval.methods import METHODS
+
+    report_module = sys.modules["crossval.report"]
+    monkeypatch.setattr(report_module, "FULL", report_module.QUICK)  # the quick sweeps, full rules
+    scene = SUITE["kendall_circle"]
+    cache = ResultCache(tmp_path / "cache")
+    coarse = METHODS["bem_energy"].solve(scene, resolution=report_module.QUICK["bem_energy"][-1])
+    cache.put(ResultCache.key(scene, "bem_energy", 1.0), coarse)
+    wrong = dataclasses.replace(coarse, pulloff_force=1.2 * coarse.pulloff_force)
+    cache.put(ResultCache.key(scene, "bem_energy", None), wrong)
+
+    def energy_force_check(rep):
+        (c,) = [c for c in rep.checks["kendall_circle"] if c.method == "bem_energy" and c.quantity == "pulloff_force"]
+        return c
+
+    quick = crossval.report(tmp_path / "q", quick=True, cache_dir=tmp_path / "cache", scenes=["kendall_circle"])
+    assert energy_force_check(quick).passed and energy_force_check(quick).value == coarse.pulloff_force
+    full = crossval.report(
+        tmp_path / "f", quick=False, cache_dir=tmp_path / "cache", scenes=["kendall_circle"], extremes=False
+    )
+    assert energy_force_check(full).value == wrong.pulloff_force and not energy_force_check(full).passed
+    data = _strict_json((tmp_path / "f" / "results.json").read_text())
+    assert data["scenes"]["kendall_circle"]["finest"]["bem_energy"]["pulloff_force"] == wrong.pulloff_force
