@@ -41,9 +41,10 @@ WINDOW_MEMO = 3
 def windows_memory_bytes(padded_cells: int) -> float:
     """Bytes the remembered windows of a grid with ``padded_cells`` padded cells may hold:
     WINDOW_MEMO windows of at most WINDOW_GAIN of its cells, each a float64 kernel (8 bytes
-    a cell), its real half-spectrum symbol (4) and a float32 preconditioner on the half
-    spectrum (2)."""
-    return padded_cells * (8 + 4 + 2) * WINDOW_MEMO * WINDOW_GAIN
+    a cell), its real half-spectrum symbol (4), a float32 preconditioner on the half
+    spectrum (2) and the operator's transform buffers in both precisions (18: the input rows
+    and a complex half spectrum)."""
+    return padded_cells * (8 + 4 + 2 + 18) * WINDOW_MEMO * WINDOW_GAIN
 
 
 @dataclass(frozen=True, eq=False)

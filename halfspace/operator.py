@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import threading
+import weakref
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -9,7 +11,15 @@ import scipy.fft as sfft
 
 from .kernel import padded_shape
 
+try:  # pocketfft's own entry points write into a given array (``out``), which scipy.fft's do not
+    from scipy.fft._pocketfft import pypocketfft as _pocketfft  # type: ignore[import-not-found]
+except ImportError:  # pragma: no cover - a scipy without them takes the allocating path
+    _pocketfft = None
+
 __all__ = ["HalfSpaceOperator", "default_workers"]
+
+#: each thread's transform buffers, per operator (kept out of the operator, which stays picklable)
+_scratch = threading.local()
 
 
 def default_workers() -> int:
@@ -35,7 +45,10 @@ class HalfSpaceOperator:
     influence coefficients, zero-padded (to at least 2n - 1) so the grid does not wrap.  The
     transforms are pruned: the input occupies only nx of the Mx padded rows and only nx rows of
     the output are wanted, so the row transforms run on nx rows, not Mx (about 3/4 of the work
-    of a plain padded rfft2/irfft2 pair; measured in ``benchmarks/bench_matvec.py``).
+    of a plain padded rfft2/irfft2 pair; measured in ``benchmarks/bench_matvec.py``).  The
+    transforms run in place in buffers each thread keeps per operator (pocketfft's own entry
+    points, which take an output array), so that a product allocates and copies only its
+    result; the numbers are those of scipy.fft's allocating transforms, bit for bit.
 
     Parameters
     ----------
@@ -74,6 +87,34 @@ class HalfSpaceOperator:
         khat = sfft.rfft2(self.kernel, workers=self.workers)
         object.__setattr__(self, "_symbol", np.ascontiguousarray(khat.real))
 
+    def _buffers(self, dtype: np.dtype) -> tuple[np.ndarray, np.ndarray]:
+        """This thread's zero-padded input rows (nx, My) and half spectrum (Mx, My // 2 + 1) in
+        ``dtype``'s precision, allocated once: a product then allocates only its output."""
+        if not hasattr(_scratch, "buffers"):
+            _scratch.buffers = weakref.WeakKeyDictionary()
+        mine = _scratch.buffers.setdefault(self, {})
+        buffers = mine.get(dtype.char)
+        if buffers is None:
+            nx, _ = self.shape
+            Mx, My = self.kernel.shape
+            complex_type = np.complex64 if dtype == np.float32 else np.complex128
+            buffers = mine[dtype.char] = (np.zeros((nx, My), dtype), np.zeros((Mx, My // 2 + 1), complex_type))
+        return buffers
+
+    def _pruned(self, rows: np.ndarray, s: np.ndarray) -> np.ndarray:
+        """The pruned convolution of the padded input ``rows`` (nx, My) with the symbol ``s``,
+        transformed in the half-spectrum buffer of ``rows``' precision; (nx, My) output."""
+        nx, _ = self.shape
+        Mx, My = self.kernel.shape
+        _, spectrum = self._buffers(rows.dtype)
+        workers = self.workers
+        _pocketfft.r2c(rows, (1,), True, 0, spectrum[:nx], workers)
+        spectrum[nx:] = 0.0
+        _pocketfft.c2c(spectrum, (0,), True, 0, spectrum, workers)
+        np.multiply(spectrum, s, out=spectrum)
+        _pocketfft.c2c(spectrum, (0,), False, 2, spectrum, workers)
+        return _pocketfft.c2r(spectrum[:nx], (1,), My, False, 2, None, workers)
+
     @property
     def padded_shape(self) -> tuple[int, int]:
         """(Mx, My), the shape of the kernel and of the padded FFT grid."""
@@ -105,6 +146,10 @@ class HalfSpaceOperator:
         s = self._symbol if symbol is None else symbol
         if self.periodic:
             return sfft.irfft2(sfft.rfft2(p, workers=self.workers) * s, s=(nx, ny), workers=self.workers)
+        if _pocketfft is not None and p.dtype in (np.float32, np.float64):
+            rows, _ = self._buffers(p.dtype)
+            rows[:, :ny] = p
+            return self._pruned(rows, s)[:, :ny]
         a = sfft.rfft(p, n=My, axis=1, workers=self.workers)
         b = sfft.fft(a, n=Mx, axis=0, workers=self.workers, overwrite_x=True)
         b *= s
@@ -185,9 +230,7 @@ class HalfSpaceOperator:
         numpy.ndarray
             (nx, ny) displacements at the element centres.
         """
-        p = np.zeros(self.shape)
-        p[mask] = values
-        return self.convolve(p)
+        return self._masked(values, mask, self._symbol, np.dtype(np.float64))
 
     def apply_symbol(self, values: np.ndarray, mask: np.ndarray, symbol: np.ndarray) -> np.ndarray:
         """Like :meth:`apply_masked` with another Fourier symbol, restricted to ``mask``.
@@ -209,6 +252,18 @@ class HalfSpaceOperator:
         numpy.ndarray
             The convolution on ``mask`` (float64), in the order of ``u[mask]``.
         """
-        p = np.zeros(self.shape, dtype=symbol.dtype)
-        p[mask] = values
-        return self.convolve(p, symbol)[mask].astype(float)
+        return self._masked(values, mask, symbol, np.dtype(symbol.dtype))[mask].astype(float)
+
+    def _masked(self, values: np.ndarray, mask: np.ndarray, symbol: np.ndarray, dtype: np.dtype) -> np.ndarray:
+        """The convolution of ``values`` on ``mask`` (zero elsewhere) with ``symbol``, computed
+        in ``dtype``'s precision, on the whole grid."""
+        if self.periodic or _pocketfft is None or dtype not in (np.float32, np.float64):
+            p = np.zeros(self.shape, dtype=dtype)
+            p[mask] = values
+            return self.convolve(p, symbol)
+        _, ny = self.shape
+        rows, _ = self._buffers(dtype)
+        grid = rows[:, :ny]
+        grid.fill(0.0)
+        grid[mask] = values
+        return self._pruned(rows, symbol)[:, :ny]

@@ -239,3 +239,42 @@ def test_on_loves_squares_both_bems_share_a_kernel_error(monkeypatch):
     r_e = be.solve(sc, be.EnergySettings(grid=grid, kernel="love"))
     r_g = bg.solve(sc, bg.GriffithSettings(grid=grid))
     assert r_e.stiffness == pytest.approx(r_g.stiffness, rel=1e-6)
+
+
+# -- the operator's transforms ---------------------------------------------------
+
+
+def test_products_in_reused_buffers_are_the_dense_matrix_products_whatever_came_before(monkeypatch):
+    """The operator transforms in buffers it keeps between products: every product, after a
+    denser mask or a product in the other precision, equals the dense matrix C restricted to
+    its mask (float64 to round-off, float32 to single precision) and, bit for bit, the product
+    scipy.fft computes in freshly allocated arrays."""
+    import halfspace.operator as ho
+
+    nx, ny = 13, 9
+    P = padded_shape(nx, ny)
+    K = hk.love_influence(nx, ny, 0.3, 1.0, P)
+    op = HalfSpaceOperator(K, (nx, ny))
+    rows, cols = np.divmod(np.arange(nx * ny), ny)
+    C = K[(rows[:, None] - rows[None, :]) % P[0], (cols[:, None] - cols[None, :]) % P[1]]
+    rng = np.random.default_rng(4)
+    masks = [np.ones((nx, ny), bool), rng.random((nx, ny)) < 0.3, rng.random((nx, ny)) < 0.7]
+    single = op.symbol.astype(np.float32)
+    products = []
+    for mask in masks + masks[::-1]:
+        v = rng.standard_normal(int(mask.sum()))
+        dense = C[:, mask.ravel()] @ v
+        u = op.apply_masked(v, mask)
+        assert np.allclose(u.ravel(), dense, rtol=0, atol=1e-13 * np.abs(dense).max())
+        u32 = op.apply_symbol(v, mask, single)
+        assert np.allclose(u32, dense.reshape(nx, ny)[mask], rtol=0, atol=1e-5 * np.abs(dense).max())
+        p = np.zeros((nx, ny))
+        p[mask] = v
+        products.append((v, mask, u, u32, op.apply(p)))
+    monkeypatch.setattr(ho, "_pocketfft", None)  # scipy.fft's allocating transforms
+    for v, mask, u, u32, whole in products:
+        assert np.array_equal(u, op.apply_masked(v, mask))
+        assert np.array_equal(u32, op.apply_symbol(v, mask, single))
+        p = np.zeros((nx, ny))
+        p[mask] = v
+        assert np.array_equal(whole, op.apply(p))
