@@ -17,7 +17,7 @@ import numpy as np
 
 from .counters import WorkCounters
 from .linear import CGResult, conjugate_gradient
-from .problem import Problem
+from .problem import SAMPLING_MARGIN, Problem
 from .settings import GriffithSettings
 from .windows import window_for
 
@@ -29,11 +29,12 @@ LOCAL_REACH = 3
 #: changes beyond which the local warm start is skipped (its dense solve would grow too large)
 LOCAL_CHANGES = 16
 
-#: ``decide(contact, x1, displacement, error)``: whether a caller has learnt all it needs from
-#: an unfinished flat-face solve on ``contact`` with pressures per approach ``x1`` (each within
-#: ``error`` of the exact ones); ``displacement()`` gives C x1 on the whole grid (it may cost an
-#: operator application, so it is asked for only when the pressures have decided)
-Decision = Callable[[np.ndarray, np.ndarray, Callable[[], np.ndarray], float], bool]
+#: ``decide(contact, x1, displacement, error, displacement_error)``: whether a caller has learnt
+#: all it needs from an unfinished flat-face solve on ``contact`` with pressures per approach
+#: ``x1`` (each within ``error`` of the exact ones); ``displacement()`` gives C x1 on the whole
+#: grid (it may cost an operator application, so it is asked for only when the pressures have
+#: decided), each value within ``displacement_error`` of the exact one at the free cells
+Decision = Callable[[np.ndarray, np.ndarray, Callable[[], np.ndarray], float, float], bool]
 
 
 @dataclass(frozen=True, eq=False)
@@ -105,9 +106,11 @@ def solve_contact_set(
     solution and the counters say so.
 
     With ``decide`` (flat faces, with the problem's eigenvalue floor), CG stops as soon as
-    ``decide`` accepts an iterate, given the bound ||r||_2 / eigenvalue_floor on its pressures'
-    error (``Problem.eigenvalue_floor``): the solution is then exact only to that bound, and
-    counted as decided, not as converged to rtol."""
+    ``decide`` accepts an iterate, given bounds on its pressures' and displacements' errors: from
+    the energy norm of the error (``Problem.inverse_diagonal``, ``Problem.self_influence``) with
+    the Fourier preconditioner, else ||r||_2 / eigenvalue_floor (``Problem.eigenvalue_floor``,
+    ``Problem.kernel_norm``).  The solution is then exact only to those bounds, and counted as
+    decided, not as converged to rtol."""
     window = window_for(problem, contact)
     if window is None:
         operator, contact_in_window, inverse = problem.operator, contact, problem.inverse_symbol
@@ -179,8 +182,12 @@ def solve_contact_set(
     floor = problem.eigenvalue_floor
     if decide is not None and problem.flat and floor is not None:
         tried_displacements = False
+        # with the lattice's inverse symbol as the preconditioner, r.M r bounds the energy norm
+        # of the error (below), a bound markedly tighter than ||r||_2 / floor
+        inverse_diagonal = problem.inverse_diagonal
+        energy_bounds = precondition is not None and inverse_diagonal is not None
 
-        def early_stop(x: np.ndarray, image: np.ndarray | None, residual_norm: float) -> bool:
+        def early_stop(x: np.ndarray, image: np.ndarray | None, residual_norm: float, residual_energy: float) -> bool:
             nonlocal tried_displacements
             if tried_displacements:  # a windowed solve's displacements left it undecided: finish it
                 return False
@@ -194,7 +201,17 @@ def solve_contact_set(
 
             # the recursive residual drifts from b - A x by round-off: never trust it below that
             error = max(residual_norm, 1e-13 * math.sqrt(n)) / floor
-            if decide(contact, x, displacement, error):
+            displacement_error = problem.kernel_norm * error
+            if energy_bounds and inverse_diagonal is not None:
+                # ||x - x*||_C^2 = r.C_SS^-1 r <= r.(T^-1)_SS r (T the element lattice's Toeplitz
+                # operator, of which C_SS is a section), which the preconditioner's r.M r gives to
+                # its sampling, covered by SAMPLING_MARGIN; by Cauchy-Schwarz in the energy inner
+                # product each pressure's error is at most sqrt((C_SS^-1)_ii) times that norm, and
+                # each free cell's displacement error at most sqrt(C_00) times it
+                energy_error = max(math.sqrt(SAMPLING_MARGIN * max(residual_energy, 0.0)), 1e-13 * math.sqrt(n / floor))
+                error = min(error, math.sqrt(inverse_diagonal) * energy_error)
+                displacement_error = min(displacement_error, math.sqrt(problem.self_influence) * energy_error)
+            if decide(contact, x, displacement, error, displacement_error):
                 return True
             decided_image.clear()
             return False

@@ -151,13 +151,18 @@ def early_decision(
     unfinished solve of a contact set already fixes the cascade's next pass, i.e. every tension
     and every free gap lies farther from its threshold than its error bound, and some element
     certainly leaves.  Then the pass (``cascade``) detaches and attaches exactly the elements it
-    would after a full solve.  None where it does not apply."""
+    would after a full solve.  The test is ``decide(contact, x1, displacement, error,
+    displacement_error=None)`` (``bem_griffith.contact_set.Decision``): ``error`` bounds each
+    pressure's error, ``displacement_error`` each free displacement's (by default
+    ``kernel_norm * error``).  None where it does not apply."""
     if not (settings.decide_early and problem.flat and isinstance(rule, PaperRule) and approach != 0):
         return None
     threshold = rule.threshold(settings.tie_tolerance)
     gap_tolerance = _gap_tolerance(problem, approach)
 
-    def decide(contact: np.ndarray, x1: np.ndarray, displacement, error: float) -> bool:
+    def decide(
+        contact: np.ndarray, x1: np.ndarray, displacement, error: float, displacement_error: float | None = None
+    ) -> bool:
         tension = -approach * x1  # flat: no profile pressure
         distance = tension - threshold
         if not (distance > 0).any() or np.abs(distance).min() <= abs(approach) * error:
@@ -166,7 +171,9 @@ def early_decision(
         if not free.any():
             return True
         gap = (displacement()[free] - 1.0) * approach + problem.height[free]
-        gap_error = abs(approach) * problem.kernel_norm * error
+        if displacement_error is None:  # Cauchy-Schwarz on each row of C
+            displacement_error = problem.kernel_norm * error
+        gap_error = abs(approach) * displacement_error
         # each free gap certainly open (> tolerance) or certainly closed (< -tolerance)
         return bool(np.all((gap > gap_tolerance + gap_error) | (gap < -gap_tolerance - gap_error)))
 

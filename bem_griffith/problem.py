@@ -25,7 +25,12 @@ from .preconditioner import inverse_lattice_symbol
 from .settings import GriffithSettings
 from .windows import WindowMemo, windows_memory_bytes
 
-__all__ = ["Problem", "build_problem", "estimate_memory_gb", "max_elements_per_radius"]
+__all__ = ["Problem", "build_problem", "estimate_memory_gb", "max_elements_per_radius", "SAMPLING_MARGIN"]
+
+#: the factor by which a quantity of the element lattice's symbol, taken from its samples on the
+#: padded grid, is widened into a bound: the samples leave out aliases and the frequencies between
+#: them (the eigenvalue floor is halved, the inverse diagonal and the energy r.M r doubled)
+SAMPLING_MARGIN = 2.0
 
 
 @dataclass(frozen=True, eq=False, kw_only=True)
@@ -65,6 +70,17 @@ class Problem:
     kernel_norm
         The Euclidean norm of all influence coefficients: |(C e)_i| <= kernel_norm ||e||_2 at
         any cell i (Cauchy-Schwarz), which bounds the error of the displacements.
+    inverse_diagonal
+        An upper bound on every diagonal entry of every C_SS^-1: twice the mean of the lattice
+        symbol's inverse over the Brillouin zone, sampled on the padded grid (the mean itself is
+        the diagonal of the infinite lattice's inverse, which bounds that of every finite
+        section from above; the factor 2 covers the sampling, as for ``eigenvalue_floor``);
+        None without the Fourier preconditioner or on a periodic grid.  With it the energy
+        norm of a CG iterate's error bounds each pressure's error (``bem_griffith.contact_set``).
+    self_influence
+        C_00, the displacement of a cell under its own unit pressure: for a cell i outside S,
+        c^T C_SS^-1 c < C_00 with c the influences of S on i (the Schur complement of C on S
+        and i is positive), which bounds the error of the displacements by the energy norm.
     """
 
     operator: HalfSpaceOperator
@@ -82,6 +98,8 @@ class Problem:
     windows: WindowMemo | None = None
     eigenvalue_floor: float | None = None
     kernel_norm: float = math.inf
+    inverse_diagonal: float | None = None
+    self_influence: float = math.inf
 
     @property
     def cell_area(self) -> float:
@@ -192,7 +210,7 @@ def build_problem(scene: Scene, settings: GriffithSettings) -> Problem:
             smallest = float(lattice_symbol(operator.padded_shape, h, lambda q: point_kernel[0] * transform(q)).min())
         else:
             smallest = 1.0 / float(inverse.max())
-        floor = 0.5 * smallest
+        floor = smallest / SAMPLING_MARGIN
     return Problem(
         operator=operator,
         face=raster.mask,
@@ -209,4 +227,19 @@ def build_problem(scene: Scene, settings: GriffithSettings) -> Problem:
         windows=WindowMemo() if settings.shrink_window and not periodic else None,
         eigenvalue_floor=floor if floor is not None and floor > 0 else None,
         kernel_norm=float(np.sqrt(np.sum(kernel**2))),
+        inverse_diagonal=None
+        if inverse is None or periodic
+        else SAMPLING_MARGIN * full_spectrum_mean(inverse, operator.padded_shape[1]),
+        self_influence=float(kernel[0, 0]),
     )
+
+
+def full_spectrum_mean(half: np.ndarray, width: int) -> float:
+    """The mean over the whole padded spectrum of a real even function given on the half
+    spectrum (Mx, width // 2 + 1) of an rfft2 of ``width`` columns: every column but the zero
+    frequency (and, for an even width, the Nyquist one) stands for two."""
+    weights = np.full(half.shape[1], 2.0)
+    weights[0] = 1.0
+    if width % 2 == 0:
+        weights[-1] = 1.0
+    return float(np.sum(half.astype(float) * weights) / (half.shape[0] * width))
