@@ -16,12 +16,27 @@ paper's size, the five-ray star on a 512^2 grid over its bounding box (a quarter
 more).  ``--update`` writes docs/performance_griffith_pulloff.json and
 docs/performance_griffith_choices.json (rendered into docs/performance.md by
 ``python benchmarks/docs_tables.py``).
+
+    python benchmarks/bench_griffith_pulloff.py --baseline [REV] [--update]
+
+compares the solver with its state at git revision REV (``bem_griffith`` and ``halfspace``
+extracted with ``git archive``; default BASELINE) on the star at 128^2 and 256^2 and the circle
+at 128 per radius: each case runs in fresh subprocesses, old and new alternated, and the table
+shows their CPU times, the ratio of the medians, the work counted and whether the answer moved
+(same contact areas along the curve, F_A to how many digits).  ``--update`` writes
+docs/performance_griffith_baseline.json.
 """
 
 from __future__ import annotations
 
+import hashlib
+import json
+import os
+import subprocess
 import sys
+import tempfile
 import time
+from pathlib import Path
 
 import _timing  # noqa: F401  (thread counts first)
 import numpy as np
@@ -169,5 +184,112 @@ def main(star512=False, update=False):
         _timing.write_doc_table("performance_griffith_choices", CHOICE_HEADERS, choices, record)
 
 
+ROOT = Path(__file__).resolve().parent.parent
+#: the solver before the in-place transforms and the energy-norm decision bounds
+BASELINE = "b5fc263"
+BASELINE_HEADERS = [
+    "case",
+    "grid",
+    "old cpu s",
+    "new cpu s",
+    "old/new",
+    "CG it old/new",
+    "matvecs old/new",
+    "|dF_A|/F_A",
+    "same areas",
+]
+
+
+def baseline_case(name: str):
+    """The scene and elements per radius of a baseline case."""
+    E = cs.Homogeneous(0.75, 0.5)
+    if name.startswith("star"):
+        star = cs.Scene(cs.Indenter(cs.Star(5, 1.0, 0.45)), E, cs.Adhesion(1.0))
+        cells = int(name.split()[1].split("^")[0])
+        return star, cells * star.indenter.shape.equivalent_radius / 2.0
+    return cs.Scene(cs.Indenter(cs.Circle(1.0)), E, cs.Adhesion(1.0)), 128
+
+
+def child(name: str) -> None:
+    """Run one baseline case with whichever ``bem_griffith`` is importable; print one JSON line."""
+    scene, N = baseline_case(name)
+    cpu = time.process_time()
+    r = bg.solve(scene, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)))
+    cpu = time.process_time() - cpu
+    areas = hashlib.sha1(np.asarray(r.curve.contact_area, float).tobytes()).hexdigest()
+    print(
+        json.dumps(
+            {
+                "cpu": cpu,
+                "pulloff_force": r.pulloff_force,
+                "iterations": r.iterations,
+                "matvecs": r.info["matvecs"],
+                "grid": list(r.info["grid"]),
+                "areas": areas,
+                "module": bg.__file__,
+            }
+        )
+    )
+
+
+def against_baseline(rev: str, update: bool) -> None:
+    """The table against revision ``rev``, old and new alternated in fresh subprocesses."""
+    record = _timing.provenance_record()
+    cases = [("circle 128", 3), ("star 128^2", 3), ("star 256^2", 2)]
+    rows, precise = [], []
+    with tempfile.TemporaryDirectory() as tmp:
+        archive = subprocess.run(
+            ["git", "-C", str(ROOT), "archive", rev, "bem_griffith", "halfspace"], check=True, capture_output=True
+        ).stdout
+        subprocess.run(["tar", "-x", "-C", tmp], input=archive, check=True)
+        paths = {"old": f"{tmp}{os.pathsep}{ROOT}", "new": str(ROOT)}
+
+        def run(tag: str, name: str) -> dict:
+            env = dict(os.environ, PYTHONPATH=paths[tag])
+            out = subprocess.run(
+                [sys.executable, __file__, "--child", name], env=env, check=True, capture_output=True, text=True
+            ).stdout
+            result = json.loads(out.strip().splitlines()[-1])
+            expected = tmp if tag == "old" else str(ROOT)
+            assert result["module"].startswith(expected), f"{tag} imported {result['module']}"
+            return result
+
+        for name, repeat in cases:
+            runs: dict[str, list[dict]] = {"old": [], "new": []}
+            for i in range(repeat):  # alternated, each order as often as possible
+                for tag in ("old", "new") if i % 2 == 0 else ("new", "old"):
+                    runs[tag].append(run(tag, name))
+            old, new = runs["old"], runs["new"]
+            old_cpu = float(np.median([r["cpu"] for r in old]))
+            new_cpu = float(np.median([r["cpu"] for r in new]))
+            nx, ny = new[0]["grid"]
+            rows.append(
+                [
+                    name,
+                    f"{nx}x{ny}",
+                    " ".join(f"{r['cpu']:.2f}" for r in old),
+                    " ".join(f"{r['cpu']:.2f}" for r in new),
+                    f"{old_cpu / new_cpu:.2f}",
+                    f"{old[0]['iterations']}/{new[0]['iterations']}",
+                    f"{old[0]['matvecs']}/{new[0]['matvecs']}",
+                    f"{abs(new[0]['pulloff_force'] / old[0]['pulloff_force'] - 1):.1e}",
+                    "yes" if old[0]["areas"] == new[0]["areas"] else "no",
+                ]
+            )
+            precise.append({"case": name, "old": old, "new": new})
+            print(_timing.table(rows, BASELINE_HEADERS), flush=True)
+    if update:
+        _timing.write_doc_table(
+            "performance_griffith_baseline", BASELINE_HEADERS, rows, record, baseline=rev, precise=precise
+        )
+
+
 if __name__ == "__main__":
-    main(star512="--star512" in sys.argv, update="--update" in sys.argv)
+    if "--child" in sys.argv:
+        child(sys.argv[sys.argv.index("--child") + 1])
+    elif "--baseline" in sys.argv:
+        following = sys.argv[sys.argv.index("--baseline") + 1 :]
+        revision = following[0] if following and not following[0].startswith("--") else BASELINE
+        against_baseline(revision, update="--update" in sys.argv)
+    else:
+        main(star512="--star512" in sys.argv, update="--update" in sys.argv)
