@@ -270,7 +270,21 @@ def _projected_cg(
     evals = 1
     potential = prob.potential if adhesive else None
     most_in_contact = 0
-    direction_pressure_of = prob.pressure_single if single_precision_directions else prob.pressure
+    # work arrays of the padded grid, reused across the iterations: a fresh array of a few
+    # megabytes is fresh pages from the system, whose faults cost system time.  The products
+    # of one iteration go into the first two; the trial state into the spare U and P, which
+    # are the previous ones once a step is accepted; the free gradient alternates between two
+    # (the previous one is needed for the conjugate direction)
+    preconditioned_buffer = np.empty(prob.padded)
+    spare_U, spare_P, difference = np.empty(prob.padded), np.empty(prob.padded), np.empty(prob.padded)
+    gradient_buffers = (np.empty(prob.padded), np.empty(prob.padded))
+    if single_precision_directions:
+        direction_pressure_buffer = np.empty(prob.padded)
+
+        def direction_pressure_of(direction):
+            return prob.pressure_single(direction, out=direction_pressure_buffer)
+    else:
+        direction_pressure_of = prob.pressure
     updated = False  # P, E and G carry incremental updates since they were last computed from U
 
     def free_gradient(G, at_wall_face):
@@ -278,7 +292,8 @@ def _projected_cg(
         # them and its scaled largest magnitude, the projected-gradient measure of convergence
         fixed = np.zeros(face_block.shape, bool)
         fixed[face_block] = at_wall_face & (prob.on_face(G) > 0)
-        Gf = G.copy()
+        Gf = gradient_buffers[0] if gradient_buffers[0] is not Gf_previous else gradient_buffers[1]
+        np.copyto(Gf, G)
         Gf[corner][fixed] = 0.0
         return fixed, Gf, _largest_magnitude(Gf) * prob.self_compliance / (prob.cell * L)
 
@@ -298,13 +313,13 @@ def _projected_cg(
             fixed, Gf, pg = free_gradient(G, at_wall_face)
         if pg <= gtol:
             return Minimum(U, P, E, it - 1, evals, True, pg)
-        preconditioned = prob.preconditioned(Gf)
+        preconditioned = prob.preconditioned(Gf, out=preconditioned_buffer)
         preconditioned[corner][fixed] = 0.0
         zg = float(np.vdot(preconditioned, Gf))
         same_set = not restart_on_wall_change or np.array_equal(fixed, fixed_previous)
         gs = 0.0
-        if direction is not None and same_set and zg_previous > 0:
-            beta = max(0.0, float(np.vdot(preconditioned, Gf - Gf_previous)) / zg_previous)
+        if direction is not None and Gf_previous is not None and same_set and zg_previous > 0:
+            beta = max(0.0, float(np.vdot(preconditioned, np.subtract(Gf, Gf_previous, out=difference))) / zg_previous)
             # in place (the previous direction is not needed again): beta d - z
             direction *= beta
             direction -= preconditioned
@@ -328,14 +343,14 @@ def _projected_cg(
         # the direction, the elastic curvature alone sets a first trial (backtracking follows)
         alpha = -gs / (prob.cell * (curvature if curvature > 0 else elastic_curvature))
         for halvings in range(60):  # noqa: B007  (the count is read after the loop)
-            Un = alpha * direction
+            Un = np.multiply(direction, alpha, out=spare_U)
             Un += U
             Un_face = prob.on_face(Un)
             if (Un_face < wall).any():
                 Un[corner][face_block] = np.maximum(Un_face, wall)
                 Pn, Pn_updated = None, False
             else:
-                Pn = alpha * direction_pressure
+                Pn = np.multiply(direction_pressure, alpha, out=spare_P)
                 Pn += P
                 Pn_updated = True
             En, Gn, Pn, curvature_face_n = prob.energy_and_curvature(Un, d, adhesive, Pn)
@@ -354,6 +369,7 @@ def _projected_cg(
             # iteration has stagnated (l_c ~ Delta near a snap took 50 evaluations per step and
             # 150,000 in one minimisation before this stop)
             return Minimum(Un, Pn, En, it, evals, pg <= gtol, pg, "stagnated at round-off in the energy")
+        spare_U, spare_P = U, P
         U, P, E, G, curvature_face = Un, Pn, En, Gn, curvature_face_n
         updated = Pn_updated
         if it % 50 == 0:

@@ -14,6 +14,7 @@ g = U - (d - h) >= 0 on the face (hard wall), h the profile height.
 from __future__ import annotations
 
 import math
+import threading
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -24,6 +25,11 @@ from halfspace.collocation import collocated_graded_influence, collocated_influe
 from halfspace.kernel import graded_influence, love_influence
 
 from .potentials import Potential, process_zone_exponent, process_zone_length, process_zone_modulus
+
+try:  # pocketfft's own entry points write into a given array (``out``), which scipy.fft's do not
+    from scipy.fft._pocketfft import pypocketfft as _pocketfft  # type: ignore[import-not-found]
+except ImportError:  # pragma: no cover - a scipy without them takes scipy.fft's allocating path
+    _pocketfft = None
 
 __all__ = ["EnergyProblem", "build_problem", "estimate_memory_gb"]
 
@@ -80,10 +86,58 @@ class EnergyProblem:
     symbol_single: np.ndarray = field(init=False, repr=False)
     #: the face's mask on the raster's corner of the padded grid (:meth:`on_face`)
     face_block: np.ndarray = field(init=False, repr=False)
+    #: per-thread transform buffers (:meth:`_single_precision`, :meth:`_spectrum`)
+    _scratch: threading.local = field(init=False, repr=False)
 
     def __post_init__(self):
         object.__setattr__(self, "symbol_single", self.symbol.astype(np.float32))
         object.__setattr__(self, "face_block", self.crop(self.face).copy())
+        object.__setattr__(self, "_scratch", threading.local())
+
+    def _buffer(self, name: str, shape: tuple[int, int], dtype) -> np.ndarray:
+        """This thread's work array ``name``, allocated once per problem.  The transforms of a
+        minimisation run on arrays of a few megabytes; a fresh one each time is fresh pages
+        from the system, whose faults took up to 8 % of a finest range's CPU time."""
+        buffer = self._scratch.__dict__.get(name)
+        if buffer is None:
+            buffer = np.empty(shape, dtype)
+            setattr(self._scratch, name, buffer)
+        return buffer
+
+    def _spectrum(self, U: np.ndarray) -> np.ndarray:
+        """rfft2 of ``U`` in this thread's half-spectrum buffer of U's precision."""
+        Mx, My = self.padded
+        if U.dtype == np.float32:
+            out = self._buffer("spectrum_single", (Mx, My // 2 + 1), np.complex64)
+        else:
+            out = self._buffer("spectrum", (Mx, My // 2 + 1), np.complex128)
+        # scipy.fft.rfft2's own call, into ``out``: the same numbers
+        return _pocketfft.r2c(U, (0, 1), True, 0, out, 1)
+
+    def _single_precision(self, A: np.ndarray, symbol: np.ndarray, divide: bool, out: np.ndarray | None) -> np.ndarray:
+        """The product (``divide``: quotient) of ``A``'s spectrum with ``symbol``, transformed
+        back, in single precision; returned in double precision (in ``out`` if given)."""
+        if _pocketfft is None:  # pragma: no cover - see the import
+            F = sfft.rfft2(A.astype(np.float32))
+            if divide:
+                F /= symbol
+            else:
+                F *= symbol
+            result = sfft.irfft2(F, s=self.padded, overwrite_x=True)
+        else:
+            single = self._buffer("real_single", self.padded, np.float32)
+            np.copyto(single, A, casting="same_kind")
+            F = self._spectrum(single)
+            if divide:
+                F /= symbol
+            else:
+                F *= symbol
+            # scipy.fft.irfft2's own call (backward normalisation), into ``single``
+            result = _pocketfft.c2r(F, (0, 1), self.padded[1], False, 2, single, 1)
+        if out is None:
+            return result.astype(np.float64)
+        np.copyto(out, result)
+        return out
 
     @property
     def padded(self) -> tuple[int, int]:
@@ -118,7 +172,7 @@ class EnergyProblem:
             The pressures on the padded grid.
         """
         # in place, and the transform may overwrite its input: no complex temporaries (the same numbers)
-        F = sfft.rfft2(U)
+        F = sfft.rfft2(U) if _pocketfft is None else self._spectrum(U)
         F /= self.symbol
         return sfft.irfft2(F, s=self.padded, overwrite_x=True)
 
@@ -139,7 +193,7 @@ class EnergyProblem:
         F *= self.symbol
         return sfft.irfft2(F, s=self.padded, overwrite_x=True)
 
-    def pressure_single(self, U: np.ndarray) -> np.ndarray:
+    def pressure_single(self, U: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
         """C^-1 U in single precision (returned in double): a search direction's pressure.
 
         The projected CG adds it, times the step, to a pressure that is recomputed in double
@@ -150,18 +204,18 @@ class EnergyProblem:
         ----------
         U : numpy.ndarray
             Surface displacements on the padded grid.
+        out : numpy.ndarray or None, optional
+            A float64 array of the padded grid's shape to write the result into (a new one
+            when None).
 
         Returns
         -------
         numpy.ndarray
-            C^-1 U, float64, on the padded grid.
+            C^-1 U, float64, on the padded grid (``out`` when given).
         """
-        U32 = U.astype(np.float32)
-        F = sfft.rfft2(U32)
-        F /= self.symbol_single
-        return sfft.irfft2(F, s=self.padded, overwrite_x=True).astype(np.float64)
+        return self._single_precision(U, self.symbol_single, True, out)
 
-    def preconditioned(self, G: np.ndarray) -> np.ndarray:
+    def preconditioned(self, G: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
         """C G in single precision (returned in double): the projected CG's preconditioner.
 
         It only chooses search directions, whose step lengths, energies and gradients are evaluated
@@ -172,16 +226,16 @@ class EnergyProblem:
         ----------
         G : numpy.ndarray
             A gradient on the padded grid.
+        out : numpy.ndarray or None, optional
+            A float64 array of the padded grid's shape to write the result into (a new one
+            when None).
 
         Returns
         -------
         numpy.ndarray
-            C G, float64, on the padded grid.
+            C G, float64, on the padded grid (``out`` when given).
         """
-        G32 = G.astype(np.float32)
-        F = sfft.rfft2(G32)
-        F *= self.symbol_single
-        return sfft.irfft2(F, s=self.padded, overwrite_x=True).astype(np.float64)
+        return self._single_precision(G, self.symbol_single, False, out)
 
     def on_face(self, A: np.ndarray) -> np.ndarray:
         """The face cells' entries of a padded-grid array, 1-D in the order of ``A[face]``.

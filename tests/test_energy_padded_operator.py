@@ -1,0 +1,61 @@
+"""The energy BEM's padded FFT transforms.
+
+The transforms written into reused buffers must give the same numbers, bit for bit, as
+scipy.fft's allocating calls, which is what makes them a pure speed change (the minimisers'
+paths, and so every pull-off, stay the same to the last bit).
+"""
+
+import numpy as np
+import pytest
+import scipy.fft as sfft
+
+import bem_energy as be
+import contact_scene as cs
+
+
+def scene(shape):
+    return cs.Scene(cs.Indenter(shape), cs.Homogeneous(1.0, 0.0), cs.Adhesion(0.02))
+
+
+@pytest.mark.parametrize("shape", [cs.Circle(1.0), cs.Triangle.equilateral(2.0)], ids=["circle", "triangle"])
+def test_buffered_transforms_equal_scipy_fft_bit_for_bit(shape):
+    prob = be.build_problem(scene(shape), 0.1, None)
+    rng = np.random.default_rng(3)
+    U = rng.standard_normal(prob.padded)
+    s = prob.padded
+    expected_pressure = sfft.irfft2(sfft.rfft2(U) / prob.symbol, s=s)
+    single = U.astype(np.float32)
+    expected_single = sfft.irfft2(sfft.rfft2(single) / prob.symbol_single, s=s).astype(np.float64)
+    expected_preconditioned = sfft.irfft2(sfft.rfft2(single) * prob.symbol_single, s=s).astype(np.float64)
+    for _ in range(2):  # the second time through reuses the buffers the first one left behind
+        assert np.array_equal(prob.pressure(U), expected_pressure)
+        assert np.array_equal(prob.pressure_single(U), expected_single)
+        assert np.array_equal(prob.preconditioned(U), expected_preconditioned)
+        out = np.full(s, np.nan)
+        assert prob.pressure_single(U, out=out) is out
+        assert np.array_equal(out, expected_single)
+        assert prob.preconditioned(U, out=out) is out
+        assert np.array_equal(out, expected_preconditioned)
+    # a result handed out is not a buffer that the next product overwrites
+    first = prob.pressure_single(U)
+    prob.pressure_single(2 * U)
+    assert np.array_equal(first, expected_single)
+
+
+@pytest.mark.parametrize("single", [True, False])
+def test_projected_cg_states_are_its_own_and_consistent(single):
+    # the CG reuses work arrays within a minimisation and the problem reuses transform buffers
+    # across them: a returned state must keep its values through later minimisations, and its
+    # pressure must be C^-1 of its displacement (an array written by two owners would not be)
+    rho = 0.08
+    sc = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.0), cs.Adhesion(0.02, rho))
+    prob = be.build_problem(sc, 1 / 12, be.Potential(0.02, rho, "exponential"))
+    U0 = np.zeros(prob.padded)
+    first = be.minimise(prob, U0, -0.05, True, method="pk", gtol=1e-8, single_precision_directions=single)
+    U, P = first.U.copy(), first.P.copy()
+    second = be.minimise(prob, first.U, -0.1, True, method="pk", gtol=1e-8, single_precision_directions=single)
+    assert first.converged and second.converged
+    assert first.iterations > 5 and second.iterations > 5  # enough iterations to reuse every array
+    assert np.array_equal(first.U, U) and np.array_equal(first.P, P)
+    for m in (first, second):
+        assert np.max(np.abs(m.P - prob.pressure(m.U))) <= 1e-9 * np.max(np.abs(m.P))
