@@ -3,11 +3,12 @@
 Each face's default sequence (``ZeroRangeSettings()``: l_c / a = 0.08 ... 0.01) is solved by
 the current ``bem_energy`` and by the package as it was at ``--baseline`` (a git revision,
 extracted to a temporary directory and imported beside it), alternating the two so that both
-see the same machine load.  Printed: median wall time of each, their ratio, the extrapolated
-F_A of each (scaled to Eq. 13's upper bound, F_up for the face's area), the change in units of
-the new result's own error estimate, and the largest change of a single range's force.  The
-table and the raw numbers go to ``--json`` (default ``docs/performance_energy_zero_range.json``)
-with the date, the machine and the load average at the start.  No timed tests use this.
+see the same machine load.  Printed: median CPU time of each (the solver runs on one thread;
+the wall times are in the JSON), their ratio, the extrapolated F_A of each (scaled to Eq. 13's
+upper bound, F_up for the face's area), the change in units of the new result's own error
+estimate, and the largest change of a single range's force.  The table and the raw numbers go
+to ``--json`` (default ``docs/performance_energy_zero_range.json``) with the date, the machine
+and the load average at the start.  No timed tests use this.
 
     python benchmarks/bench_energy_zero_range.py [--faces circle,square,triangle] [--repeats 1]
         [--baseline REV] [--json PATH] [--update] [--quick]
@@ -60,16 +61,19 @@ def load_baseline(rev: str, where: Path):
 
 
 def run(package, shape, quick: bool):
+    """(CPU seconds, wall seconds, result) of one sequence.  CPU time is the measure: the
+    solver runs on one thread, and on a shared machine the wall time also counts the others'
+    load."""
     sc = cs.Scene(cs.Indenter(shape), cs.Homogeneous(1.0, 0.0), cs.Adhesion(W))
-    t = time.perf_counter()
+    t, w = time.process_time(), time.perf_counter()
     r = package.solve(sc, package.ZeroRangeSettings.coarse(1.0) if quick else None)
-    return time.perf_counter() - t, r
+    return time.process_time() - t, time.perf_counter() - w, r
 
 
 HEADERS = (
     "face",
-    "old s",
-    "new s",
+    "old CPU s",
+    "new CPU s",
     "old/new",
     "F_A/F_up old",
     "F_A/F_up new",
@@ -130,14 +134,20 @@ def main(argv=None):
             shape = FACES[name]()
             face_load = os.getloadavg()
             F_up = T.upper_bound_force(E_star=1.0, work=W, area=shape.area)
-            times = {"old": [], "new": []}
+            times: dict[str, list[float]] = {"old": [], "new": []}
+            walls: dict[str, list[float]] = {"old": [], "new": []}
             results = {}
             for _ in range(args.repeats):
                 for label, pkg in (("old", old_pkg), ("new", be)):
-                    dt, r = run(pkg, shape, args.quick)
+                    dt, wall, r = run(pkg, shape, args.quick)
                     times[label].append(dt)
+                    walls[label].append(wall)
                     results[label] = r
-                    print(f"  {name} {label}: {dt:.1f} s, F_A / F_up = {r.pulloff_force / F_up:.6f}", flush=True)
+                    print(
+                        f"  {name} {label}: {dt:.1f} s CPU ({wall:.1f} s wall), "
+                        f"F_A / F_up = {r.pulloff_force / F_up:.6f}",
+                        flush=True,
+                    )
             old, new = results["old"], results["new"]
             t_old, t_new = statistics.median(times["old"]), statistics.median(times["new"])
             f_old = old.info["zero_range"]["pulloff_forces"]
@@ -161,8 +171,10 @@ def main(argv=None):
                 "date": datetime.now(UTC).isoformat(timespec="seconds"),
                 "load_average_at_start": face_load,
                 "sequence": "coarse" if args.quick else "default",
-                "old_s": times["old"],
-                "new_s": times["new"],
+                "old_cpu_s": times["old"],
+                "new_cpu_s": times["new"],
+                "old_wall_s": walls["old"],
+                "new_wall_s": walls["new"],
                 "ratio": t_old / t_new,
                 "F_old": old.pulloff_force,
                 "F_new": new.pulloff_force,
