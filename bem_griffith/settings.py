@@ -69,9 +69,11 @@ class GriffithSettings:
     decide_early : bool, optional
         Flat faces under the paper's criterion (True by default): within a cascade at a fixed
         approach, a contact set from which more elements leave is solved only until a bound on
-        its error (the CG residual over a lower bound of C_SS's eigenvalues, and through the
-        influence coefficients the displacements') shows which elements detach and which gaps
-        close; only the set that holds is solved to ``rtol``.  The decisions are the same as
+        its error shows which elements detach and which gaps close (with the Fourier
+        preconditioner, the error's energy norm from the preconditioned residual, times the
+        lattice's inverse diagonal for the pressures and sqrt(C_00) for the displacements;
+        without it, the CG residual over a lower bound of C_SS's eigenvalues); only the set
+        that holds is solved to ``rtol``.  The decisions are the same as
         after a full solve, so are the contact sets and the curve (forces to the CG tolerance);
         the five-ray star's pull-off on a 128^2 grid needed a third fewer CG iterations
         (``bench_griffith_pulloff.py``).
