@@ -11,10 +11,9 @@ import scipy.fft as sfft
 
 from .kernel import padded_shape
 
-try:  # pocketfft's own entry points write into a given array (``out``), which scipy.fft's do not
-    from scipy.fft._pocketfft import pypocketfft as _pocketfft  # type: ignore[import-not-found]
-except ImportError:  # pragma: no cover - a scipy without them takes the allocating path
-    _pocketfft = None
+# pocketfft's own entry points write into a given array (``out``), which scipy.fft's do not;
+# None (scipy.fft's allocating path) where they are missing or differ
+from .pocketfft import POCKETFFT as _pocketfft
 
 __all__ = ["HalfSpaceOperator", "default_workers"]
 

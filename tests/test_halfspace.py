@@ -278,3 +278,34 @@ def test_products_in_reused_buffers_are_the_dense_matrix_products_whatever_came_
         p = np.zeros((nx, ny))
         p[mask] = v
         assert np.array_equal(whole, op.apply(p))
+
+
+def test_private_in_place_transforms_are_used_only_when_they_equal_scipy_fft():
+    """The in-place transforms come from scipy's private pocketfft module: they are accepted only
+    while they compute scipy.fft's numbers into the arrays given.  A changed normalisation, a
+    result returned in a new array or a changed signature each turn them off (the public,
+    allocating path), never into a wrong product."""
+    import types
+
+    from halfspace.pocketfft import POCKETFFT, same_as_scipy_fft
+
+    real = pytest.importorskip("scipy.fft._pocketfft").pypocketfft
+    assert same_as_scipy_fft(real) and POCKETFFT is real
+
+    def mutant(**changes):
+        fns = {name: getattr(real, name) for name in ("r2c", "c2c", "c2r")}
+        return types.SimpleNamespace(**{**fns, **changes})
+
+    def rescaled_c2r(a, axes, n, forward, inorm, out, nthreads):
+        return real.c2r(a, axes, n, forward, 0, out, nthreads)  # unnormalised inverse
+
+    def fresh_r2c(a, axes, forward, inorm, out, nthreads):
+        return real.r2c(a, axes, forward, inorm, None, nthreads)  # ignores ``out``
+
+    def new_signature(a, axes, forward, out=None):
+        return real.c2c(a, axes, forward, 0, out, 1)
+
+    assert same_as_scipy_fft(mutant())
+    assert not same_as_scipy_fft(mutant(c2r=rescaled_c2r))
+    assert not same_as_scipy_fft(mutant(r2c=fresh_r2c))
+    assert not same_as_scipy_fft(mutant(c2c=new_signature))
