@@ -24,37 +24,11 @@ from contact_scene import Homogeneous, PowerLawGraded, Scene, SceneError, raster
 from halfspace.collocation import collocated_graded_influence, collocated_influence
 from halfspace.kernel import graded_influence, love_influence
 
+# pocketfft's own entry points write into a given array (``out``), which scipy.fft's do not;
+# None (scipy.fft's allocating calls) where they are missing or differ from scipy.fft
+from halfspace.pocketfft import POCKETFFT as _pocketfft
+
 from .potentials import Potential, process_zone_exponent, process_zone_length, process_zone_modulus
-
-
-def _checked_pocketfft(module):
-    """``module`` (scipy's private pocketfft binding) if its ``r2c`` and ``c2r`` write into the
-    arrays given and equal scipy.fft's rfft2 and irfft2 bit for bit, in double and single
-    precision; else None, and :class:`EnergyProblem` takes scipy.fft's allocating calls.  The
-    binding is private: a scipy that changes it must not raise mid-solve or give other numbers."""
-    if module is None:
-        return None
-    try:
-        for dtype, complex_type in ((np.float64, np.complex128), (np.float32, np.complex64)):
-            x: np.ndarray = np.linspace(-1.0, 2.0, 30, dtype=dtype).reshape(5, 6) ** 2
-            spectrum = np.zeros((5, 4), complex_type)
-            back = np.zeros((5, 6), dtype)
-            if module.r2c(x, (0, 1), True, 0, spectrum, 1) is not spectrum:
-                return None
-            if module.c2r(spectrum, (0, 1), 6, False, 2, back, 1) is not back:
-                return None
-            if not (np.array_equal(spectrum, sfft.rfft2(x)) and np.array_equal(back, sfft.irfft2(spectrum, s=(5, 6)))):
-                return None
-    except Exception:  # a changed signature
-        return None
-    return module
-
-
-try:  # pocketfft's own entry points write into a given array (``out``), which scipy.fft's do not
-    from scipy.fft._pocketfft import pypocketfft as _binding  # type: ignore[import-not-found]
-except ImportError:  # pragma: no cover - a scipy without them takes scipy.fft's allocating path
-    _binding = None
-_pocketfft = _checked_pocketfft(_binding)
 
 __all__ = ["EnergyProblem", "build_problem", "estimate_memory_gb"]
 

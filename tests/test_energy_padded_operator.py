@@ -59,28 +59,3 @@ def test_projected_cg_states_are_its_own_and_consistent(single):
     assert np.array_equal(first.U, U) and np.array_equal(first.P, P)
     for m in (first, second):
         assert np.max(np.abs(m.P - prob.pressure(m.U))) <= 1e-9 * np.max(np.abs(m.P))
-
-
-def test_a_changed_private_fft_binding_falls_back_to_scipy_fft():
-    from scipy.fft._pocketfft import pypocketfft
-
-    from bem_energy.problem import _checked_pocketfft
-
-    assert _checked_pocketfft(pypocketfft) is pypocketfft
-
-    class Ignores:  # returns a new array instead of writing into ``out``
-        r2c = staticmethod(lambda a, axes, forward, inorm, out, nthreads: pypocketfft.r2c(a, axes, forward, inorm))
-        c2r = staticmethod(pypocketfft.c2r)
-
-    class Unnormalised:  # another normalisation of the inverse
-        r2c = staticmethod(pypocketfft.r2c)
-        c2r = staticmethod(
-            lambda a, axes, n, forward, inorm, out, nthreads: pypocketfft.c2r(a, axes, n, forward, 0, out, nthreads)
-        )
-
-    class Renamed:  # another signature
-        r2c = staticmethod(lambda a, axes: pypocketfft.r2c(a, axes))
-        c2r = staticmethod(pypocketfft.c2r)
-
-    for fake in (Ignores, Unnormalised, Renamed, None):
-        assert _checked_pocketfft(fake) is None
