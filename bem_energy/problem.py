@@ -96,7 +96,7 @@ class EnergyProblem:
     def _buffer(self, name: str, shape: tuple[int, int], dtype) -> np.ndarray:
         """This thread's work array ``name``, allocated once per problem.  The transforms of a
         minimisation run on arrays of a few megabytes; a fresh one each time is fresh pages
-        from the system, whose faults took up to 8 % of a finest range's CPU time."""
+        from the system, whose faults cost system time on every transform."""
         buffer = self._scratch.__dict__.get(name)
         if buffer is None:
             buffer = np.empty(shape, dtype)

@@ -56,15 +56,15 @@ class GriffithSettings:
     preconditioner : str, optional
         ``"fourier"`` (default): the inverse of the Fourier symbol of the element lattice
         (``halfspace.kernel.lattice_symbol``), applied on the padded grid in single precision; it cuts
-        CG iterations about fivefold at the cost of one extra FFT pair each, also for
+        CG iterations several-fold (``bench_griffith_pulloff.py``) at the cost of one extra FFT pair each, also for
         elongated grids and k < 0, where the padded window's own symbol is a poor one.
         ``"none"``: plain conjugate gradients.
     shrink_window : bool, optional
         ``True`` (default): when the contact set has shrunk into a markedly smaller box of the
         grid (padded FFT size <= 90 %), its solves run on that box's padded grid, with the
         same coefficients C_SS (``HalfSpaceOperator.window``); one full-grid product per solve
-        then gives the gaps of the whole face.  Same contact sets, forces to round-off; a
-        star's pull-off, whose tips detach first, ran 1.5x faster at 128^2 and 256^2
+        then gives the gaps of the whole face.  Same contact sets, forces to round-off; it pays
+        on faces whose contact shrinks early, like a star's, whose tips detach first
         (``bench_griffith_pulloff.py``); circles hardly shrink and are unaffected.
     decide_early : bool, optional
         Flat faces under the paper's criterion (True by default): within a cascade at a fixed
@@ -74,16 +74,14 @@ class GriffithSettings:
         lattice's inverse diagonal for the pressures and sqrt(C_00) for the displacements;
         without it, the CG residual over a lower bound of C_SS's eigenvalues); only the set
         that holds is solved to ``rtol``.  The decisions are the same as
-        after a full solve, so are the contact sets and the curve (forces to the CG tolerance);
-        the five-ray star's pull-off on a 128^2 grid needed a third fewer CG iterations
-        (``bench_griffith_pulloff.py``).
+        after a full solve, so are the contact sets and the curve (forces to the CG tolerance),
+        with fewer CG iterations (``bench_griffith_pulloff.py``).
     local_warm_start : bool, optional
         True by default: a contact set that differs from the previous one by a few cells starts
         CG from the previous pressures corrected on the cells near the change (the residual
         there solved exactly with the dense C of those cells), which removes most of the
-        residual the change leaves; the solution is the same to the CG tolerance.  With early
-        decisions, the star's pull-off on a 128^2 grid needed a sixth fewer CG iterations
-        again (``bench_griffith_pulloff.py``).
+        residual the change leaves; the solution is the same to the CG tolerance, with fewer
+        CG iterations (``bench_griffith_pulloff.py``).
     graded_criterion : str, optional
         Graded bodies only: ``"calibrated"`` (default) divides Eq. 42's sigma_c by r(k), the
         factor by which the flat circle's pull-off under it misses Eq. 39, relative to the
