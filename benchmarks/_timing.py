@@ -61,6 +61,14 @@ def revision() -> str:
     return commit + (" (with uncommitted changes)" if dirty else "")
 
 
+def extract_revision(rev: str, paths, where) -> None:
+    """Write ``paths`` (packages or files of the repository) as they were at git revision ``rev``
+    into the directory ``where``: the earlier algorithm a benchmark compares against, in the
+    same run as the current one."""
+    archive = subprocess.run(["git", "-C", ROOT, "archive", rev, *paths], check=True, capture_output=True).stdout
+    subprocess.run(["tar", "-x", "-C", str(where)], input=archive, check=True)
+
+
 def provenance_record() -> dict:
     """When, on what and from which commit a run started: the ``date``, ``machine`` and
     ``revision`` of a docs table's JSON.  Taken at the start, so that the load average is the

@@ -51,10 +51,7 @@ FACES = {
 
 def load_baseline(rev: str, where: Path):
     """``bem_energy`` at git revision ``rev``, importable as ``bem_energy_baseline``."""
-    archive = subprocess.run(
-        ["git", "-C", str(ROOT), "archive", rev, "bem_energy"], check=True, capture_output=True
-    ).stdout
-    subprocess.run(["tar", "-x", "-C", str(where)], input=archive, check=True)
+    _timing.extract_revision(rev, ["bem_energy"], where)
     (where / "bem_energy").rename(where / "bem_energy_baseline")
     sys.path.insert(0, str(where))
     return importlib.import_module("bem_energy_baseline")

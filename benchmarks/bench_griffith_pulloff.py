@@ -238,10 +238,7 @@ def against_baseline(rev: str, update: bool) -> None:
     cases = [("circle 128", 3), ("star 128^2", 3), ("star 256^2", 2)]
     rows, precise = [], []
     with tempfile.TemporaryDirectory() as tmp:
-        archive = subprocess.run(
-            ["git", "-C", str(ROOT), "archive", rev, "bem_griffith", "halfspace"], check=True, capture_output=True
-        ).stdout
-        subprocess.run(["tar", "-x", "-C", tmp], input=archive, check=True)
+        _timing.extract_revision(rev, ["bem_griffith", "halfspace"], tmp)
         paths = {"old": f"{tmp}{os.pathsep}{ROOT}", "new": str(ROOT)}
 
         def run(tag: str, name: str) -> dict:
