@@ -240,8 +240,9 @@ def energy_range(face: str, ratio: float, zs: ZeroRangeSettings) -> dict:
     }
 
 
-def energy_limit(face: str, cache: Path, *, compute: bool = True) -> dict | None:
-    zs = ZeroRangeSettings()
+def energy_limit(face: str, cache: Path, *, compute: bool = True, ratios=None) -> dict | None:
+    """The zero-range limit of the default sequence, or of ``ratios`` (l_c / a) in its place."""
+    zs = ZeroRangeSettings() if ratios is None else ZeroRangeSettings(ratios=tuple(ratios))
     scene = face_scene(face)
     runs = []
     for r in zs.ratios:
@@ -387,13 +388,13 @@ def reference(qentry: dict) -> dict | None:
     }
 
 
-def assemble(cache: Path, criterion: str) -> dict:
+def assemble(cache: Path, criterion: str, ratios=None) -> dict:
     checks: dict = {}
     faces = {}
     for face in FACES:
         scene = face_scene(face)
         grif = {c: griffith_entry(cache, face, c, checks) for c in CRITERIA}
-        energy = energy_limit(face, cache, compute=False)
+        energy = energy_limit(face, cache, compute=False, ratios=ratios)
         primary = grif.get(criterion)
         entry: dict = {
             "scene": face if face != "square_45" else "square rotated by 45 degrees (contact_scene.Transformed)",
@@ -443,10 +444,12 @@ def fmt(v: dict | None, digits: int = 4) -> str:
     return f"{v['value']:.{digits}f} ± {100 * v['relative_bar']:.2g} %"
 
 
-def write(cache: Path, criterion: str) -> None:
+def write(cache: Path, criterion: str, ratios=None) -> None:
     if not any(cache.glob("*__griffith__*.json")):
         raise SystemExit(f"no cached solve in {cache}: run the griffith and energy parts first (same --cache)")
-    table = assemble(cache, criterion)
+    table = assemble(cache, criterion, ratios)
+    zs = ZeroRangeSettings() if ratios is None else ZeroRangeSettings(ratios=tuple(ratios))
+    lcs = ", ".join(f"{r:g}" for r in zs.ratios)
     when = datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")
     rev = revision()
     doc = {
@@ -465,7 +468,8 @@ def write(cache: Path, criterion: str) -> None:
         "reference_criterion": criterion,
         "command": "python benchmarks/reference_table.py griffith && python benchmarks/reference_table.py energy "
         "&& python benchmarks/reference_table.py write (each with the same --cache; this file from "
-        f"--cache {cache}, reference criterion {criterion})",
+        f"--cache {cache}, reference criterion {criterion}"
+        + (f", --ratios {' '.join(f'{r:g}' for r in zs.ratios)})" if ratios is not None else ")"),
         "revision": rev,
         "date": when,
         "griffith_procedure": (
@@ -475,8 +479,9 @@ def write(cache: Path, criterion: str) -> None:
             "procedure on Kendall's circle (check)"
         ),
         "energy_procedure": (
-            "bem_energy zero-range limit, default ZeroRangeSettings (l_c / a = 0.08, 0.04, 0.02, 0.01 at 2 "
-            "elements per l_c, forces scaled to the nominal area, rate fitted); force bar = the extrapolation's "
+            f"bem_energy zero-range limit, ZeroRangeSettings (l_c / a = {lcs} at "
+            f"{zs.elements_per_process_zone:g} elements per l_c, forces scaled to the nominal area, rate fitted); "
+            "force bar = the extrapolation's "
             "estimate (bem_energy.richardson); stiffness = the finest grid's, with bem_energy's stiffness bar"
         ),
         "agreement_rule": "two values agree when |gap| <= the sum of their absolute bars",
@@ -584,6 +589,13 @@ def main(argv=None) -> None:
     p.add_argument("--criteria", nargs="+", choices=CRITERIA, default=CRITERIA)
     p.add_argument("--reference-criterion", choices=CRITERIA, default="paper")
     p.add_argument("--cache", type=Path, default=DEFAULT_CACHE)
+    p.add_argument(
+        "--ratios",
+        nargs="+",
+        type=float,
+        default=None,
+        help="the energy BEM's process zones l_c / a (energy and write; default: ZeroRangeSettings().ratios)",
+    )
     args = p.parse_args(argv)
     resolutions = [int(N) if float(N).is_integer() else N for N in args.resolutions]
     if args.part == "griffith":
@@ -592,11 +604,11 @@ def main(argv=None) -> None:
                 griffith_sweep(face, criterion, resolutions, args.cache)
     elif args.part == "energy":
         for face in args.faces or FACES:
-            r = energy_limit(face, args.cache)
+            r = energy_limit(face, args.cache, ratios=args.ratios)
             assert r is not None
             print(f"{face}: zero-range F_A / F_A,upper = {fmt(r['pulloff_force'])}", flush=True)
     else:
-        write(args.cache, args.reference_criterion)
+        write(args.cache, args.reference_criterion, args.ratios)
 
 
 if __name__ == "__main__":
