@@ -435,7 +435,31 @@ def assemble(cache: Path, criterion: str, ratios=None) -> dict:
                 qentry["within_target"] = bool(qentry["reference"]["relative_bar"] <= entry["target_bar"])
             entry["quantities"][q] = qentry
         faces[face] = entry
-    return {"check": {k: v for k, v in checks.items() if v is not None}, "faces": faces}
+    return {
+        "check": {k: v for k, v in checks.items() if v is not None},
+        "energy_check": energy_check(cache, ratios),
+        "faces": faces,
+    }
+
+
+def energy_check(cache: Path, ratios=None) -> dict | None:
+    """The energy BEM's zero-range procedure (the same sequence as the faces') on Kendall's
+    circle, where F_A / F_A,upper is exactly 1: its error, and whether its own bar covers it.
+    None when the circle's sequence is not in the cache."""
+    e = energy_limit(CHECK, cache, compute=False, ratios=ratios)
+    if e is None:
+        return None
+    f = e["pulloff_force"]
+    error = f["value"] - 1.0
+    return {
+        "value": f["value"],
+        "relative_bar": f["relative_bar"],
+        "error": error,
+        "covered": bool(abs(error) <= f["relative_bar"] * abs(f["value"])),
+        "fitted_rate": f["fitted_rate"],
+        "sequence": f["sequence"],
+        "settings": e["settings"],
+    }
 
 
 def fmt(v: dict | None, digits: int = 4) -> str:
@@ -538,6 +562,21 @@ def write(cache: Path, criterion: str, ratios=None) -> None:
                     "",
                 ]
             )
+    ec = table["energy_check"]
+    if ec is not None:
+        rows.append(
+            [
+                "check: Kendall circle (energy BEM)",
+                "",
+                "",
+                f"error {100 * ec['error']:+.3f} % (bar {100 * ec['relative_bar']:.2g} %)",
+                "",
+                "",
+                "",
+                "",
+                "",
+            ]
+        )
     load = list(os.getloadavg())
     DOCS_JSON.write_text(
         json.dumps(
