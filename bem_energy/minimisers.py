@@ -364,14 +364,25 @@ def _projected_cg(
             alpha *= 0.5
         else:
             return Minimum(U, P, E, it, evals, False, pg, "line search failed")
-        if halvings >= 40:
-            # a decrease found only 2^-40 along the model step is round-off in the energy: the
-            # iteration has stagnated (l_c ~ Delta near a snap took 50 evaluations per step and
-            # 150,000 in one minimisation before this stop)
+        # a decrease found only 2^-40 along the model step is round-off in the energy: the
+        # iteration has stagnated (l_c ~ Delta near a snap took 50 evaluations per step and
+        # 150,000 in one minimisation before this stop)
+        stalled = halvings >= 40
+        if stalled and (pg <= gtol or not single_precision_directions or direction_pressure_of is prob.pressure):
             return Minimum(Un, Pn, En, it, evals, pg <= gtol, pg, "stagnated at round-off in the energy")
         spare_U, spare_P = U, P
         U, P, E, G, curvature_face = Un, Pn, En, Gn, curvature_face_n
         updated = Pn_updated
+        if stalled:
+            # the directions' single-precision pressures can stall the line search at their own
+            # round-off while the double-precision gradient is still above gtol: go on in double
+            # precision from a fresh evaluation (a stall there ends the minimisation as above)
+            direction_pressure_of = prob.pressure
+            direction = None
+            E, G, P, curvature_face = prob.energy_and_curvature(U, d, adhesive)
+            evals += 1
+            updated = False
+            continue
         if it % 50 == 0:
             # refresh P from U: the incremental update accumulates round-off
             E, G, P, curvature_face = prob.energy_and_curvature(U, d, adhesive)
