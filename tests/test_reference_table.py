@@ -195,6 +195,48 @@ def test_procedure_check_on_kendall(table):
     assert check_problems(broken)
 
 
+def energy_check_problems(doc: dict) -> list[str]:
+    """The energy BEM's procedure on Kendall's circle (F_A / F_A,upper exactly 1), recomputed
+    from its stored sequence: the limit and bar are what ``bem_energy.richardson`` gives, the
+    error is the limit less 1, and the bar covers it (else the faces' bars from the same
+    procedure are not to be trusted)."""
+    from bem_energy.zero_range import richardson
+
+    check = doc.get("energy_check")
+    if check is None:
+        return ["no energy check on Kendall's circle"]
+    seq = check["sequence"]
+    F0, _, est = richardson(np.array(seq["process_zone_ratios"]), np.array(seq["forces_at_nominal_area"]))
+    out = []
+    stored = (check["value"], check["relative_bar"])
+    if not (math.isclose(F0, stored[0], rel_tol=1e-9) and math.isclose(est / F0, stored[1], rel_tol=1e-9)):
+        out.append(f"stored limit {stored[0]:.6g} +- {stored[1]:.3g}, its sequence gives {F0:.6g} +- {est / F0:.3g}")
+    if not math.isclose(check["error"], check["value"] - 1.0, rel_tol=1e-9, abs_tol=1e-15):
+        out.append(f"stored error {check['error']:.3g} is not the limit less 1")
+    if abs(F0 - 1.0) > est:
+        out.append(f"the bar {est:.3g} does not cover the known error {F0 - 1:+.3g}")
+    if check["covered"] is not (abs(F0 - 1.0) <= est):
+        out.append("the covered flag is wrong")
+    ratios = seq["process_zone_ratios"]
+    for face, entry in doc["faces"].items():
+        if (
+            entry["energy"] is not None
+            and entry["energy"]["pulloff_force"]["sequence"]["process_zone_ratios"] != ratios
+        ):
+            out.append(f"{face}: its energy sequence is not the one checked on the circle")
+    return out
+
+
+def test_energy_procedure_check_on_kendall(table):
+    assert not energy_check_problems(table)
+    broken = copy.deepcopy(table)
+    broken["energy_check"]["sequence"]["forces_at_nominal_area"][-1] *= 0.99
+    assert energy_check_problems(broken)
+    broken = copy.deepcopy(table)
+    broken["energy_check"]["relative_bar"] /= 4
+    assert energy_check_problems(broken)
+
+
 def test_target_flags(table):
     """Whether each reference meets the bar issue #22 asks (0.3 %, 0.5 % for the star and two
     circles) is stated, and stated truly."""
