@@ -23,9 +23,7 @@ import argparse
 import importlib
 import json
 import os
-import platform
 import statistics
-import subprocess
 import sys
 import tempfile
 import time
@@ -80,20 +78,12 @@ HEADERS = (
 )
 
 
-def write(path: Path, args, started, load, rows, records):
-    rev = subprocess.run(
-        ["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True
-    ).stdout.strip()
+def write(path: Path, args, record: dict, rows, records):
+    """``record``: ``_timing.provenance_record()`` taken when the run started (date, machine,
+    load, thread settings, revision, flagged when the tree had uncommitted changes)."""
     out = {
         "written_by": _timing.command(),
-        "date": started.isoformat(timespec="seconds"),
-        "machine": {
-            "platform": platform.platform(),
-            "processor": platform.processor() or platform.machine(),
-            "cpus": os.cpu_count(),
-            "load_average_at_start": load,
-        },
-        "revision": rev,
+        **record,
         "baseline": args.baseline,
         "repeats": args.repeats,
         "headers": list(HEADERS),
@@ -122,8 +112,8 @@ def main(argv=None):
     )
     args = ap.parse_args(argv)
     faces = [f.strip() for f in args.faces.split(",") if f.strip()]
-    started = datetime.now(UTC)
-    load = os.getloadavg()
+    record = _timing.provenance_record()
+    load = record["machine"]["load_average_at_start"]
     rows, records = [], {}
     with tempfile.TemporaryDirectory() as tmp:
         old_pkg = load_baseline(args.baseline, Path(tmp))
@@ -186,7 +176,7 @@ def main(argv=None):
                 "minimiser_iterations_new": new.iterations,
             }
             if args.json:  # after every face, so that a long run leaves what it measured
-                write(Path(args.json), args, started, load, rows, records)
+                write(Path(args.json), args, record, rows, records)
     print(
         f"\nzero-range limit, {'coarse' if args.quick else 'default'} sequence, E* = 1, w = {W}; "
         f"baseline {args.baseline}; "
