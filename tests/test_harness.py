@@ -45,7 +45,7 @@ def test_serial_processes_and_dask_are_identical():
         try:
             cl.close(timeout=60)
         except TimeoutError:
-            warnings.warn("dask's LocalCluster did not close within 60 s", RuntimeWarning, stacklevel=1)
+            warnings.warn("dask's LocalCluster did not close within 60 s", stacklevel=1)
 
 
 def test_cache_is_reused_and_writes_are_atomic(tmp_path, monkeypatch):
