@@ -4,11 +4,14 @@
     python benchmarks/reference_table.py energy              # the energy BEM's zero-range limits
     python benchmarks/reference_table.py noise               # the same at other continuation step counts
     python benchmarks/reference_table.py write               # faces.json, docs/references.json
+    python benchmarks/reference_table.py seed                # the cache from faces.json's stored runs
 
 Options: ``--faces square triangle``, ``--resolutions 32 45 64 90 128``, ``--criteria paper``,
 ``--cache DIR`` (default ``benchmarks/.reference_cache``).  Every solve is cached as one JSON
 file as soon as it finishes, so an interrupted run resumes where it stopped and ``write``
-assembles whatever has been computed.
+assembles whatever has been computed.  faces.json stores every run it was assembled from;
+``seed`` writes them back into a cache, so that a new part (a face's path noise, another
+range) is added to the table without redoing the rest.
 
 For each face (square, triangle, 4:1 rectangle, five-ray star, two circles, the square at 45
 degrees to the grid) and for Kendall's circle, where the answer is known:
@@ -158,6 +161,68 @@ def cached(cache: Path, key: tuple, compute) -> dict:
     return row
 
 
+def seed(cache: Path, doc: dict) -> dict[str, int]:
+    """Write the runs a table ``doc`` (faces.json) stores into ``cache`` as cache rows, so that
+    ``write`` re-assembles the table, with new runs added beside (a face's path noise, say),
+    without redoing the hours of solves it holds.  A row already in the cache is kept: a run
+    computed here is never replaced by a stored one.  Returns the rows written and kept, by
+    method."""
+    faces = doc.get("faces", {})
+    old = [f for f, e in faces.items() if e.get("energy") and "runs" not in e["energy"]]
+    old += [
+        f"{f} ({c})"
+        for f, e in faces.items()
+        for c, sweep in e.get("griffith", {}).items()
+        if any("converged" not in p for p in sweep["points"])
+    ]
+    if old:
+        raise SystemExit(
+            "this faces.json was written before the table stored its runs (no runs or convergence for "
+            f"{', '.join(old)}): it cannot seed a cache; recompute those parts"
+        )
+    written = {"griffith": 0, "energy": 0, "kept": 0}
+    origin = {"seeded_from": f"faces.json at revision {doc.get('revision', 'unknown')}"}
+    default_zone = ZeroRangeSettings().elements_per_process_zone
+
+    def put(key: tuple, row: dict, method: str) -> None:
+        path = cache_file(cache, *key)
+        if path.exists():
+            written["kept"] += 1
+            return
+        cache.mkdir(parents=True, exist_ok=True)
+        tmp = path.with_suffix(".tmp")
+        tmp.write_text(json.dumps(origin | row, indent=1))  # a row seeded before keeps its origin
+        os.replace(tmp, path)
+        written[method] += 1
+
+    def put_energy(face: str, runs, steps: str | None = None) -> None:
+        for run in runs:
+            # the key energy_limit looks up: the zone count as ZeroRangeSettings holds it (a float)
+            key: tuple = (face, "energy", run["ratio"], float(run.get("elements_per_process_zone", default_zone)))
+            put(key if steps is None else (*key, f"steps{steps}"), run, "energy")
+
+    for key, check in doc.get("check", {}).items():
+        criterion = key.split(",")[0]
+        for point in check["points"]:
+            row = {"face": CHECK, "criterion": criterion, "messages": []} | point
+            put((CHECK, "griffith", criterion, point["N"]), row, "griffith")
+    energy_entries = [(CHECK, doc.get("energy_check"))]
+    for face, entry in doc.get("faces", {}).items():
+        for criterion, sweep in entry.get("griffith", {}).items():
+            for point in sweep["points"]:
+                row = {"face": face, "criterion": criterion, "messages": []} | point
+                put((face, "griffith", criterion, point["N"]), row, "griffith")
+        energy = entry.get("energy")
+        energy_entries.append((face, energy and energy | {"path_noise": energy["pulloff_force"].get("path_noise")}))
+    for face, energy in energy_entries:
+        if not energy or "runs" not in energy:
+            continue
+        put_energy(face, energy["runs"])
+        for steps, runs in ((energy.get("path_noise") or {}).get("runs") or {}).items():
+            put_energy(face, runs, steps)
+    return written
+
+
 # -- the Griffith sweep -------------------------------------------------------------------------
 
 
@@ -213,7 +278,7 @@ def griffith_sweep(face: str, criterion: str, resolutions, cache: Path) -> list[
         print(
             f"{face:14s} {criterion:16s} N = {N:4g}: "
             + "  ".join(f"{q} {row['normalised'][q]:.5f}" for q in QUANTITIES)
-            + f"  ({row['cpu_s']:.0f} s CPU)",
+            + f"  ({cpu_text(row)})",
             flush=True,
         )
         out.append(row)
@@ -243,9 +308,21 @@ def energy_range(face: str, ratio: float, zs: ZeroRangeSettings) -> dict:
         "pulloff_approach": res.pulloff_approach,
         "stiffness": res.stiffness,
         "face_area": res.face_area,
+        "elements_per_process_zone": zs.elements_per_process_zone,
         "converged": bool(res.converged and res.detached),
         "messages": list(res.messages) if not res.converged else [],
     }
+
+
+def total_cpu(rows) -> float | None:
+    """The CPU time of ``rows``; None when a row's is unknown (rows seeded from a table
+    written before each run's time was stored)."""
+    times = [r.get("cpu_s") for r in rows]
+    return None if any(t is None for t in times) else float(sum(times))
+
+
+def cpu_text(row: dict) -> str:
+    return "CPU time not stored" if row.get("cpu_s") is None else f"{row['cpu_s']:.0f} s CPU"
 
 
 def energy_limit(face: str, cache: Path, *, compute: bool = True, ratios=None, steps: int | None = None) -> dict | None:
@@ -265,7 +342,7 @@ def energy_limit(face: str, cache: Path, *, compute: bool = True, ratios=None, s
             return None
         row = cached(cache, key, lambda r=r: energy_range(face, r, zs))
         label = f"energy l_c/a = {r:g}" + (f", {steps} steps" if steps is not None else "")
-        print(f"{face:14s} {label}: F = {row['pulloff_force']:.6g} ({row['cpu_s']:.0f} s CPU)", flush=True)
+        print(f"{face:14s} {label}: F = {row['pulloff_force']:.6g} ({cpu_text(row)})", flush=True)
         runs.append(row)
     A = scene.indenter.shape.area
     lcs = np.array([x["ratio"] for x in runs])
@@ -287,12 +364,15 @@ def energy_limit(face: str, cache: Path, *, compute: bool = True, ratios=None, s
             },
         },
         "stiffness": {
-            "value": finest["stiffness"] / scale["stiffness"],
+            # None for a run whose stiffness was not kept (the circle's, rebuilt from an older table)
+            "value": None if finest["stiffness"] is None else finest["stiffness"] / scale["stiffness"],
             "relative_bar": bars["stiffness"].relative,
             "grid_spacing": finest["spacing"],
         },
         "converged": all(x["converged"] for x in runs),
-        "cpu_s": sum(x["cpu_s"] for x in runs),
+        "cpu_s": total_cpu(runs),
+        # every range's run, so that the table is its own cache (``reference_table.py seed``)
+        "runs": runs,
         "settings": (
             f"ZeroRangeSettings(ratios={zs.ratios}, elements_per_process_zone={zs.elements_per_process_zone:g})"
         ),
@@ -308,11 +388,12 @@ def path_noise(face: str, cache: Path, ratios, limit: dict) -> dict | None:
     zs = ZeroRangeSettings(ratios=tuple(ratios)) if ratios is not None else ZeroRangeSettings()
     first = cache_file(cache, face, "energy", zs.ratios[0], zs.elements_per_process_zone)
     counts = sorted({int(p.stem.rsplit("steps", 1)[1]) for p in cache.glob(f"{first.stem}__steps*.json")})
-    limits = {}
+    limits, runs = {}, {}
     for n in counts:
         other = energy_limit(face, cache, compute=False, ratios=ratios, steps=n)
         if other is not None and other["converged"]:
             limits[n] = other["pulloff_force"]["value"]
+            runs[str(n)] = other["runs"]
     if not limits:
         return None
     value = limit["pulloff_force"]["value"]
@@ -320,6 +401,7 @@ def path_noise(face: str, cache: Path, ratios, limit: dict) -> dict | None:
         "default_steps": zs.energy.steps,
         "limits": {str(n): v for n, v in limits.items()},
         "relative_spread": max(abs(v - value) for v in limits.values()) / abs(value),
+        "runs": runs,
     }
 
 
@@ -367,7 +449,10 @@ def procedure_check(cache: Path, criterion: str, n: int) -> dict | None:
         "grids_per_window": n,
         "windows": windows,
         "bias": {q: max(abs(w["errors"][q]["error"]) for w in windows) for q in QUANTITIES},
-        "points": [{"N": r["N"], "normalised": r["normalised"]} for r in rows],
+        "points": [
+            {"N": r["N"], "normalised": r["normalised"], "converged": r["converged"], "cpu_s": r.get("cpu_s")}
+            for r in rows
+        ],
     }
 
 
@@ -402,9 +487,17 @@ def griffith_entry(cache: Path, face: str, criterion: str, checks: dict) -> dict
         "all_converged": all(r["converged"] for r in rows),
         "quantities": out,
         "points": [
-            {"N": r["N"], "raw": r["raw"], "face_area": r["face_area"], "normalised": r["normalised"]} for r in rows
+            {
+                "N": r["N"],
+                "raw": r["raw"],
+                "face_area": r["face_area"],
+                "normalised": r["normalised"],
+                "converged": r["converged"],
+                "cpu_s": r.get("cpu_s"),
+            }
+            for r in rows
         ],
-        "cpu_s": sum(r["cpu_s"] for r in rows),
+        "cpu_s": total_cpu(rows),
     }
 
 
@@ -523,6 +616,7 @@ def energy_check(cache: Path, ratios=None) -> dict | None:
         "fitted_rate": f["fitted_rate"],
         "sequence": f["sequence"],
         "settings": e["settings"],
+        "runs": e["runs"],
     }
 
 
@@ -702,7 +796,7 @@ def render_page() -> None:
 
 def main(argv=None) -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("part", choices=("griffith", "energy", "noise", "write"))
+    p.add_argument("part", choices=("griffith", "energy", "noise", "write", "seed"))
     p.add_argument("--faces", nargs="+", default=None, help=f"default: {CHECK} and {', '.join(FACES)}")
     p.add_argument(
         "--steps",
@@ -739,6 +833,12 @@ def main(argv=None) -> None:
                 r = energy_limit(face, args.cache, ratios=args.ratios, steps=n)
                 assert r is not None
                 print(f"{face}, {n} steps: zero-range F_A / F_A,upper = {fmt(r['pulloff_force'])}", flush=True)
+    elif args.part == "seed":
+        counts = seed(args.cache, json.loads(FACES_JSON.read_text()))
+        print(
+            f"seeded {args.cache} from {FACES_JSON.relative_to(ROOT)}: {counts['griffith']} Griffith and "
+            f"{counts['energy']} energy runs written, {counts['kept']} already there and kept"
+        )
     else:
         write(args.cache, args.reference_criterion, args.ratios)
 

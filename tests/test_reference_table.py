@@ -209,7 +209,10 @@ def energy_check_problems(doc: dict) -> list[str]:
     F0, _, est = richardson(np.array(seq["process_zone_ratios"]), np.array(seq["forces_at_nominal_area"]))
     out = []
     stored = (check["value"], check["estimate"])
-    if not (math.isclose(F0, stored[0], rel_tol=1e-9) and math.isclose(est / F0, stored[1], rel_tol=1e-9)):
+    # the script fits the forces before scaling them: the fitted rate's flat misfit minimum
+    # fixes it only to about sqrt(eps), which moves a refit of the scaled sequence by ~1e-9
+    # in the limit and ~1e-7 in the estimate; a 1 % change of a range is 1e-3
+    if not (math.isclose(F0, stored[0], rel_tol=1e-6) and math.isclose(est / F0, stored[1], rel_tol=1e-6)):
         out.append(f"stored limit {stored[0]:.6g} +- {stored[1]:.3g}, its sequence gives {F0:.6g} +- {est / F0:.3g}")
     if not math.isclose(check["error"], check["value"] - 1.0, rel_tol=1e-9, abs_tol=1e-15):
         out.append(f"stored error {check['error']:.3g} is not the limit less 1")
@@ -316,3 +319,51 @@ def test_square_sweep_reproduces_the_stored_points(table):
             for q in QUANTITIES:
                 assert row["raw"][q] == pytest.approx(point["raw"][q], rel=1e-9, abs=0), (criterion, point["N"], q)
             assert row["face_area"] == pytest.approx(point["face_area"], rel=1e-12)
+
+
+def rebuilt_problems(doc: dict, cache: Path) -> list[str]:
+    """The table re-assembled from the runs it stores (``reference_table.py seed``, then the
+    assembly ``write`` does) is the table: every value, bar and flag is what its runs give,
+    so that a new part (a face's path noise) can be added without redoing the rest."""
+    script = _load_script()
+    script.seed(cache, doc)
+    rebuilt = script.assemble(cache, doc["reference_criterion"], doc["energy_check"]["sequence"]["process_zone_ratios"])
+    out = []
+    for face, entry in doc["faces"].items():
+        for q, qe in entry["quantities"].items():
+            again = rebuilt["faces"][face]["quantities"][q]
+            for key, v in qe.items():
+                w = again.get(key)
+                if isinstance(v, dict) and "value" in v:
+                    same = w is not None and all(
+                        math.isclose(v[k], w[k], rel_tol=1e-12) for k in ("value", "relative_bar")
+                    )
+                elif isinstance(v, float):
+                    same = w is not None and math.isclose(v, w, rel_tol=1e-12, abs_tol=1e-15)
+                else:
+                    same = v == w
+                if not same:
+                    out.append(f"{face} {q} {key}: stored {v!r}, its runs give {w!r}")
+    check, again = doc["energy_check"], rebuilt["energy_check"]
+    for k in ("value", "relative_bar", "covered"):
+        if again is None or check[k] != pytest.approx(again[k], rel=1e-12):
+            out.append(f"energy check {k}: stored {check[k]!r}, its runs give {again and again[k]!r}")
+    return out
+
+
+def test_table_is_its_own_cache(table, tmp_path):
+    energy = [e["energy"] for e in table["faces"].values() if e["energy"]] + [table["energy_check"]]
+    if not all("runs" in e for e in energy):
+        pytest.fail("faces.json does not store the energy runs it was assembled from")
+    assert not rebuilt_problems(table, tmp_path / "cache")
+    broken = copy.deepcopy(table)
+    broken["faces"]["star"]["energy"]["runs"][-1]["pulloff_force"] *= 1.005
+    assert rebuilt_problems(broken, tmp_path / "broken_energy")
+    broken = copy.deepcopy(table)
+    broken["faces"]["square"]["griffith"]["paper"]["points"][-1]["normalised"]["pulloff_force"] *= 1.005
+    assert rebuilt_problems(broken, tmp_path / "broken_griffith")
+    broken = copy.deepcopy(table)  # a path-noise run reaches the square's bar
+    next(iter(broken["faces"]["square"]["energy"]["pulloff_force"]["path_noise"]["runs"].values()))[-1][
+        "pulloff_force"
+    ] *= 1.01
+    assert rebuilt_problems(broken, tmp_path / "broken_noise")
