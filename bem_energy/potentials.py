@@ -19,10 +19,14 @@ from contact_scene.validation import check_fields, choice, real
 __all__ = [
     "Potential",
     "process_zone_length",
+    "process_zone_factor",
     "process_zone_modulus",
     "process_zone_exponent",
     "range_for_process_zone",
     "PROCESS_ZONE_ELEMENTS",
+    "GRADED_ZONE_ELEMENTS",
+    "graded_zone_elements",
+    "process_zone_elements",
 ]
 
 #: Elements per process zone l_c of a finite-range pull-off, per potential: (the fewest for a
@@ -34,6 +38,36 @@ __all__ = [
 #: doubling shrinking by only about 0.6: extrapolated from 8, 16, 32 per l_c (l_c / a = 0.32,
 #: 0.16; 4, 8, 16 at 0.08) it is +3 to +4 % high at 8 per l_c and +2 % at 16.
 PROCESS_ZONE_ELEMENTS: dict[str, tuple[float, float]] = {"exponential": (1.0, 2.0), "maugis_dugdale": (16.0, 16.0)}
+
+#: How many times the homogeneous count of elements per l_c a graded body (k > 0) needs, at
+#: the k measured: the graded kernel is more local, so the opening rises more steeply across a
+#: zone of the same l_c.  Exponential potential, flat circle, l_c = 0.08 a, F_A against 16 per
+#: l_c (benchmarks/study_graded_shape_ratio.py --resolution): 2 per l_c is +0.46 % high at
+#: k = 0.25, +2.0 % at 0.5, +5.8 % at 0.75; 4 per l_c +0.11, +0.15, +2.3 %; 8 per l_c +0.02,
+#: (0.5: not run), +0.3 %; k = 0: +0.18 % at 2.  Interpolated in log between the points,
+#: extrapolated with the last slope past 0.75; k < 0 keeps the homogeneous count.
+GRADED_ZONE_ELEMENTS: tuple[tuple[float, float], ...] = ((0.0, 1.0), (0.25, 1.5), (0.5, 2.0), (0.75, 4.0))
+
+
+def graded_zone_elements(exponent: float) -> float:
+    """The factor on a potential's elements per l_c for a body of grading ``exponent``
+    (:data:`GRADED_ZONE_ELEMENTS`; 1 for a homogeneous one and k <= 0)."""
+    if exponent <= 0:
+        return 1.0
+    ks = [k for k, _ in GRADED_ZONE_ELEMENTS]
+    logm = [math.log(m) for _, m in GRADED_ZONE_ELEMENTS]
+    if exponent >= ks[-1]:
+        slope = (logm[-1] - logm[-2]) / (ks[-1] - ks[-2])
+        return math.exp(logm[-1] + slope * (exponent - ks[-1]))
+    return float(math.exp(np.interp(exponent, ks, logm)))
+
+
+def process_zone_elements(kind: str, exponent: float = 0.0) -> tuple[float, float]:
+    """(fewest, default) elements per l_c for the potential ``kind`` on a body of grading
+    ``exponent`` (:data:`PROCESS_ZONE_ELEMENTS` times :func:`graded_zone_elements`)."""
+    m = graded_zone_elements(exponent)
+    fewest, default = PROCESS_ZONE_ELEMENTS[kind]
+    return fewest * m, default * m
 
 
 @dataclass(frozen=True)
@@ -149,13 +183,33 @@ class Potential:
         return np.zeros_like(np.asarray(g, float))
 
 
+def process_zone_factor(exponent: float) -> float:
+    """The factor c_k = cos(k pi / 2) (2 / pi)^k of the graded process zone (1 at k = 0).
+
+    Near the edge of a circular flat punch at the zero-range pull-off on a graded half-space
+    the pressure is p = P0 (a^2 - r^2)^((k-1)/2) with the force 2 pi P0 a^(1+k) / (1+k) = F_A
+    (Eq. 39); it equals the potential's largest stress w / rho at the distance s_k from the
+    edge with pi s_k^(1-k) = pi^k c_k E_k rho^2 / w (psi(k) of Eq. 40 reduces the constants to
+    cos(k pi / 2)).  Defining l_c by l_c^(1-k) = c_k E_k rho^2 / w makes l_c = pi s_k for every
+    k, so that a grid with n elements per l_c resolves the zone of a graded body as it does a
+    homogeneous one (at k = 0, l_c = E* rho^2 / w = pi s_0).  Without c_k (the earlier
+    definition) the zone at k = 0.5 was pi times shorter than its l_c said, and 2 elements per
+    such l_c overshot Eq. 39 by 3 % at l_c = 0.08 a (benchmarks/study_graded_shape_ratio.py).
+    """
+    if exponent == 0:
+        return 1.0
+    return math.cos(exponent * math.pi / 2) * (2.0 / math.pi) ** exponent
+
+
 def process_zone_length(*, modulus: float, work: float, range: float, exponent: float = 0.0) -> float:
-    """l_c = E* rho^2 / w (infinite without adhesion).
+    """l_c = E* rho^2 / w (infinite without adhesion); graded: l_c^(1-k) = c_k E_k rho^2 / w.
 
     On a graded half-space (surface Green's function A_k P / r^(1+k)) a cohesive zone of
     length l under the stress w / rho opens by about A_k (w / rho) l^(1-k); setting that to
-    rho gives l_c^(1-k) = E_k rho^2 / w with E_k = 1 / (pi A_k) (``modulus``, units of
-    stress / length^k; E* at k = 0, where this is the homogeneous l_c).
+    rho gives l^(1-k) ~ E_k rho^2 / w with E_k = 1 / (pi A_k) (``modulus``, units of
+    stress / length^k; E* at k = 0, where this is the homogeneous l_c).  The constant c_k
+    (:func:`process_zone_factor`) puts l_c at the same multiple of the distance where the
+    zero-range edge field reaches the potential's strength for every k.
 
     Parameters
     ----------
@@ -183,12 +237,12 @@ def process_zone_length(*, modulus: float, work: float, range: float, exponent: 
         return float("inf")
     if range <= 0:
         raise SceneError("adhesion.range", f"must be > 0 (got {range:g})")
-    return (modulus * range**2 / work) ** (1.0 / (1.0 - exponent))
+    return (process_zone_factor(exponent) * modulus * range**2 / work) ** (1.0 / (1.0 - exponent))
 
 
 def range_for_process_zone(*, modulus: float, work: float, length: float, exponent: float = 0.0) -> float:
     """The range rho whose process zone (:func:`process_zone_length`) is ``length``."""
-    return math.sqrt(work * length ** (1.0 - exponent) / modulus)
+    return math.sqrt(work * length ** (1.0 - exponent) / (process_zone_factor(exponent) * modulus))
 
 
 def process_zone_modulus(material) -> float:

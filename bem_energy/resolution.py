@@ -14,8 +14,8 @@ from contact_scene import Grid, Homogeneous, Scene, SceneError, theory
 from contact_scene.materials import PowerLawGraded
 
 from .potentials import (
-    PROCESS_ZONE_ELEMENTS,
     Potential,
+    process_zone_elements,
     process_zone_exponent,
     process_zone_length,
     process_zone_modulus,
@@ -44,18 +44,18 @@ def default_potential(scene: Scene) -> Potential | None:
 
 def unresolved_process_zone(scene: Scene, prob: EnergyProblem, potential: Potential) -> str | None:
     """Why the grid is too coarse for the process zone (None when it is fine): below the
-    potential's fewest elements per l_c (:data:`PROCESS_ZONE_ELEMENTS`) the zone is trapped by
+    potential's fewest elements per l_c (:func:`~bem_energy.potentials.process_zone_elements`) the zone is trapped by
     the mesh and the pull-off force overshoots, e.g. 2.4 x Kendall at 0.08 elements per l_c."""
-    need = PROCESS_ZONE_ELEMENTS[potential.kind][0]
+    need = process_zone_elements(potential.kind, prob.exponent)[0]
     lc = prob.process_zone
     per = lc / prob.spacing
     if per >= need * (1 - 1e-9):
         return None
     a = scene.indenter.shape.equivalent_radius
-    formula = "E* rho^2 / w" if prob.exponent == 0 else f"(E_k rho^2 / w)^(1/(1-k)), k = {prob.exponent:g}"
+    formula = "E* rho^2 / w" if prob.exponent == 0 else f"(c_k E_k rho^2 / w)^(1/(1-k)), k = {prob.exponent:g}"
     return (
         f"the grid has {per:.3g} elements per process zone l_c = {lc:.3g} ({formula}, {lc / a:.3g} a); "
-        f"the {potential.kind} potential needs at least {need:g}, below which the result is trapped by the mesh: "
+        f"the {potential.kind} potential needs at least {need:.3g}, below which the result is trapped by the mesh: "
         f"use --resolution {math.ceil(need * a / lc * (1 - 1e-9)):d} or more (elements per radius sqrt(A/pi)), "
         "or a longer range"
     )
@@ -78,7 +78,7 @@ def finite_range_grid(scene: Scene, resolution: float | None = None) -> Grid:
 
     ``resolution`` elements per radius sqrt(A/pi) when given (a grid too coarse for the process
     zone is run and reported not converged), else the finer of 32 per radius and the potential's
-    default elements per process zone (:data:`PROCESS_ZONE_ELEMENTS`).  A default grid wider than
+    default elements per process zone (:func:`~bem_energy.potentials.process_zone_elements`).  A default grid wider than
     :data:`MAX_DEFAULT_SIDE` cells is refused, naming the shortest range that fits.
 
     Parameters
@@ -111,7 +111,7 @@ def finite_range_grid(scene: Scene, resolution: float | None = None) -> Grid:
     mat = scene.material
     E, k = process_zone_modulus(mat), process_zone_exponent(mat)
     lc = process_zone_length(modulus=E, work=potential.work, range=potential.range, exponent=k)
-    per = PROCESS_ZONE_ELEMENTS[potential.kind][1]
+    per = process_zone_elements(potential.kind, k)[1]
     h = min(h, lc / per)
     xmin, ymin, xmax, ymax = shape.bounds
     width = max(xmax - xmin, ymax - ymin)
@@ -125,7 +125,7 @@ def finite_range_grid(scene: Scene, resolution: float | None = None) -> Grid:
             "adhesion.range",
             (
                 f"range {potential.range:g} gives a process zone l_c = {lc:.3g} ({lc / a:.3g} a); resolving it "
-                f"({per:g} elements per l_c for the {potential.kind} potential) needs a {side} x {side} grid "
+                f"({per:.3g} elements per l_c for the {potential.kind} potential) needs a {side} x {side} grid "
                 f"({a / h:.0f} elements per radius), wider than the {MAX_DEFAULT_SIDE} a run picks by itself "
                 f"(an hour or more): use a range >= {rho_min:.3g} (l_c >= {lc_min / a:.3g} a), "
                 "the zero-range limit (no range), "

@@ -20,8 +20,9 @@ class EnergySettings:
         Element size, as for the Griffith solver (32 elements per radius by default).  The
         process zone l_c = E* rho^2 / w needs a potential's fewest elements
         (``bem_energy.potentials.PROCESS_ZONE_ELEMENTS``: one for the exponential potential,
-        16 for Maugis-Dugdale); a coarser grid is run, but the result is not converged and its
-        messages say which resolution suffices.  ``bem_energy.finite_range_grid`` picks a grid
+        16 for Maugis-Dugdale; more on a graded body, ``process_zone_elements``); a coarser
+        grid is run, but the result is not converged and its messages say which resolution
+        suffices.  ``bem_energy.finite_range_grid`` picks a grid
         that resolves it.  A periodic grid is refused when solving: the method models the
         infinite half-space.
     minimiser : str, optional
@@ -157,7 +158,9 @@ class ZeroRangeSettings:
         The process-zone ratios l_c / a, each in (0, 1], at least two and distinct (three with
         a fitted rate); stored in decreasing order.  (0.08, 0.04, 0.02, 0.01) by default.
     elements_per_process_zone : float, optional
-        Elements per l_c of each run's grid, in [0.25, 64]; 2 by default.
+        Elements per l_c of each run's grid, in [0.25, 64]; 2 by default.  A graded body's
+        grids get ``bem_energy.potentials.graded_zone_elements(k)`` times as many (4 at
+        k = 0.5), which resolve its zone as well.
     rate : float or None, optional
         The exponent p of the fit, in (0, 4]; None (the default) to fit it.
     minimum_elements_per_radius : float, optional

@@ -22,7 +22,7 @@ from .continuation import LoadingPath, pull, snapshot
 from .equilibria import Equilibria
 from .error_model import error_bars
 from .peak import force_maximum
-from .potentials import PROCESS_ZONE_ELEMENTS, Potential
+from .potentials import Potential, process_zone_elements
 from .press import initial_stiffness, press
 from .problem import build_problem
 from .resolution import (
@@ -208,7 +208,7 @@ def pull_off(
         info["potential"] = potential.kind
         info["process_zone"] = prob.process_zone
         info["process_zone_per_element"] = prob.process_zone / prob.spacing
-        info["process_zone_elements_needed"] = PROCESS_ZONE_ELEMENTS[potential.kind][0]
+        info["process_zone_elements_needed"] = process_zone_elements(potential.kind, prob.exponent)[0]
     return Result(
         method="bem_energy",
         pulloff_force=peak.force,

@@ -21,11 +21,26 @@ import numpy as np
 from contact_scene import Circle, Grid, Result, Scene, SolverStats, rasterise, theory
 
 from .error_model import error_bars
-from .potentials import Potential, process_zone_exponent, process_zone_modulus, range_for_process_zone
+from .potentials import (
+    Potential,
+    graded_zone_elements,
+    process_zone_exponent,
+    process_zone_modulus,
+    range_for_process_zone,
+)
 from .settings import ZeroRangeSettings
 from .solver import EnergyInfo, pull_off
 
-__all__ = ["zero_range", "richardson", "tail_bracket", "ZeroRangeInfo", "SequenceInfo", "COARSE_LIMIT", "RATE_BRACKET"]
+__all__ = [
+    "zero_range",
+    "sequence_range",
+    "richardson",
+    "tail_bracket",
+    "ZeroRangeInfo",
+    "SequenceInfo",
+    "COARSE_LIMIT",
+    "RATE_BRACKET",
+]
 
 #: a sequence whose finest process zone is above this (in units of a) cannot see the cornered
 #: faces' late convergence (their local rate passes 0.8 only below 0.04 a)
@@ -197,6 +212,21 @@ def richardson(h: np.ndarray, F: np.ndarray, rate: float | None = None):
     return float(F0), used, float(est)
 
 
+def sequence_range(scene: Scene, ratio: float, settings: ZeroRangeSettings) -> tuple[float, float]:
+    """(rho, spacing) of the range of a zero-range sequence at l_c = ``ratio`` a: the range whose
+    process zone is that l_c, and a grid with ``settings.elements_per_process_zone`` elements per
+    l_c, times :func:`~bem_energy.potentials.graded_zone_elements` on a graded body, and at least
+    ``settings.minimum_elements_per_radius`` per radius a = sqrt(A / pi)."""
+    a = scene.indenter.shape.equivalent_radius
+    k = process_zone_exponent(scene.material)
+    lc = ratio * a
+    rho = range_for_process_zone(
+        modulus=process_zone_modulus(scene.material), work=scene.adhesion.work_of_adhesion, length=lc, exponent=k
+    )
+    per = settings.elements_per_process_zone * graded_zone_elements(k)
+    return rho, min(lc / per, a / settings.minimum_elements_per_radius)
+
+
 def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callback=None) -> Result:
     """The zero-range (JKR / Griffith) pull-off by extrapolating finite ranges to l_c -> 0.
 
@@ -243,13 +273,11 @@ def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callb
     t0 = time.perf_counter()
     w = scene.adhesion.work_of_adhesion
     a = scene.indenter.shape.equivalent_radius
-    E = process_zone_modulus(scene.material)
     k = process_zone_exponent(scene.material)
     runs = []
     for i, r in enumerate(settings.ratios, 1):
         lc = r * a
-        rho = range_for_process_zone(modulus=E, work=w, length=lc, exponent=k)
-        spacing = min(lc / settings.elements_per_process_zone, a / settings.minimum_elements_per_radius)
+        rho, spacing = sequence_range(scene, r, settings)
         es = replace(settings.energy, grid=Grid(spacing=spacing))
         log.info(
             "range %d of %d: l_c/a = %g (rho = %.4g, %d elements per radius)",

@@ -19,19 +19,44 @@ stops the energy BEM at l_c / a = 0.08; ``--full`` adds 0.04 and 0.02 (8 element
 400 per radius at 0.02, tens of minutes per face), ``--quick`` stops at 0.08 and 48 per
 radius.  ``--update`` writes the table to docs/accuracy_graded_shape_ratio.json (rendered
 into docs/accuracy.md by ``python benchmarks/docs_tables.py``).
+
+    python benchmarks/study_graded_shape_ratio.py --zero-range [--ratios R ...] [--cache DIR] [--update]
+
+runs the energy BEM's zero-range sequence instead (``bem_energy.ZeroRangeSettings``' grids: 2
+elements per l_c, graded process zones; default l_c / a = 0.08 ... 0.01, ``--ratios`` for
+another) on both faces at k = 0 and k = 0.5, each range cached in ``--cache`` (default
+``.cache/graded_zero_range``) so that a finer range joins without redoing the others.  Each
+sequence is extrapolated with ``bem_energy.richardson``; the circles' limits are checked
+against the closed forms (Kendall at k = 0, Eq. 39 at k = 0.5), which says whether the
+estimate bounds the error on a graded body too.  D's bar is the sum of the four forces'
+relative estimates.  ``--update`` writes docs/accuracy_graded_zero_range.json.
+
+    python benchmarks/study_graded_shape_ratio.py --resolution [--update]
+
+measures how many elements per l_c a graded body needs (the flat circle at l_c = 0.08 a, k = 0,
+0.25, 0.5, 0.75, 2 ... 16 elements per l_c; the source of
+``bem_energy.potentials.GRADED_ZONE_ELEMENTS``); ``--update`` writes
+docs/accuracy_graded_zone_resolution.json.
 """
 
 from __future__ import annotations
 
+import json
 import math
+import os
 import sys
+import time
+from dataclasses import replace
+from pathlib import Path
 
 import _timing  # noqa: F401
+import numpy as np
 
 import bem_energy as be
 import bem_griffith as bg
 import contact_scene as cs
 from bem_energy.potentials import process_zone_modulus, range_for_process_zone
+from bem_energy.zero_range import sequence_range
 from contact_scene import theory as T
 
 FACES = {"circle": cs.Circle(1.0), "square": cs.Square(math.sqrt(math.pi))}  # both of area pi
@@ -91,9 +116,193 @@ def main(Ns=(32, 48, 64, 96), lcs=(0.32, 0.16, 0.08), update=False):
         _timing.write_doc_table("accuracy_graded_shape_ratio", headers, rows, record)
 
 
+# -- the zero-range sequence ----------------------------------------------------------------------
+
+ZERO_RANGE_WORK = 1.0
+
+
+def graded_scene(name: str, k: float) -> cs.Scene:
+    return cs.Scene(cs.Indenter(FACES[name]), cs.PowerLawGraded(1.0, 1.0, k), cs.Adhesion(ZERO_RANGE_WORK))
+
+
+def zero_range_run(name: str, k: float, ratio: float, cache: Path) -> dict:
+    """One range of the zero-range sequence, as ``bem_energy.zero_range`` runs it, cached."""
+    path = cache / f"{name}__k{k:g}__{ratio:g}.json"
+    if path.exists():
+        return json.loads(path.read_text())
+    zs = be.ZeroRangeSettings()
+    scene = graded_scene(name, k)
+    rho, spacing = sequence_range(scene, ratio, zs)
+    c0 = time.process_time()
+    res = be.pull_off(
+        scene,
+        replace(zs.energy, grid=cs.Grid(spacing=spacing)),
+        spacing=spacing,
+        potential=be.Potential(ZERO_RANGE_WORK, rho, zs.potential),
+    )
+    row = {
+        "face": name,
+        "k": k,
+        "ratio": ratio,
+        "range": rho,
+        "spacing": spacing,
+        "pulloff_force": res.pulloff_force,
+        "face_area": cs.rasterise(scene.indenter.shape, spacing).area,
+        "converged": bool(res.converged and res.detached),
+        "messages": list(res.messages) if not res.converged else [],
+        "cpu_s": time.process_time() - c0,
+        "revision": _timing.provenance_record().get("revision"),
+    }
+    cache.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_suffix(".tmp")
+    tmp.write_text(json.dumps(row, indent=1))
+    os.replace(tmp, path)
+    return row
+
+
+def zero_range_limit(name: str, k: float, ratios, cache: Path) -> dict:
+    """The sequence's forces over the equal-area circle's closed form (Eq. 39; Kendall at k = 0),
+    scaled to the nominal area, and their limit with its estimate."""
+    exact = T.graded_adhesion_force(E0=1.0, c0=1.0, k=k, radius=1.0, work=ZERO_RANGE_WORK)
+    runs = []
+    for r in ratios:
+        row = zero_range_run(name, k, r, cache)
+        print(
+            f"{name:6s} k = {k:g}, l_c/a = {r:g}: F = {row['pulloff_force']:.6g} ({row['cpu_s']:.0f} s CPU)", flush=True
+        )
+        runs.append(row)
+    F = np.array(
+        [
+            T.force_at_nominal_area(x["pulloff_force"], area=x["face_area"], nominal_area=math.pi, k=k) / exact
+            for x in runs
+        ]
+    )
+    F0, rate, est = be.richardson(np.array(ratios, float), F)
+    return {
+        "face": name,
+        "k": k,
+        "ratios": list(ratios),
+        "forces": F.tolist(),
+        "limit": F0,
+        "relative_estimate": est / F0,
+        "fitted_rate": rate,
+        "converged": all(x["converged"] for x in runs),
+        "cpu_s": sum(x["cpu_s"] for x in runs),
+    }
+
+
+def zero_range_main(ratios, cache: Path, update: bool) -> None:
+    record = _timing.provenance_record()
+    seqs = {(name, k): zero_range_limit(name, k, ratios, cache) for k in (0.0, K) for name in FACES}
+    headers = ["face", "k", *[f"l_c/a = {r:g}" for r in ratios], "limit", "estimate", "rate", "circle error", "covered"]
+    rows = []
+    for (name, k), q in seqs.items():
+        err = q["limit"] - 1.0 if name == "circle" else None
+        rows.append(
+            [
+                name,
+                f"{k:g}",
+                *[f"{f:.4f}" for f in q["forces"]],
+                f"{q['limit']:.4f}",
+                f"{100 * q['relative_estimate']:.2f} %",
+            ]
+            + ["none" if q["fitted_rate"] is None else f"{q['fitted_rate']:.2f}"]
+            + (
+                ["", ""]
+                if err is None
+                else [f"{100 * err:+.2f} %", str(abs(err) <= q["relative_estimate"] * q["limit"])]
+            )
+        )
+    r0 = seqs["square", 0.0]["limit"] / seqs["circle", 0.0]["limit"]
+    rk = seqs["square", K]["limit"] / seqs["circle", K]["limit"]
+    D = rk / r0
+    bar = sum(q["relative_estimate"] for q in seqs.values())
+    rows.append(["D", f"{K:g}", *["" for _ in ratios], f"{D:.4f}", f"{100 * bar:.2f} %", "", "", ""])
+    print(_timing.table(rows, headers), flush=True)
+    print(f"square/circle: k = 0 {r0:.4f}, k = {K:g} {rk:.4f}; D = {D:.4f} +- {D * bar:.4f}", flush=True)
+    if update:
+        _timing.write_doc_table(
+            "accuracy_graded_zero_range",
+            headers,
+            rows,
+            record,
+            sequences=[q for q in seqs.values()],
+            double_ratio={"value": D, "relative_bar": bar, "square_over_circle": {"0": r0, str(K): rk}},
+        )
+
+
+# -- how many elements per l_c a graded body needs -------------------------------------------------
+
+RESOLUTION_KS = (0.0, 0.25, 0.5, 0.75)
+RESOLUTION_COUNTS = (2.0, 4.0, 8.0, 16.0)
+
+
+def resolution_main(ratio: float, update: bool) -> None:
+    """The flat circle at l_c = ``ratio`` a on bodies of grading k, on grids of 2 ... 16 elements
+    per l_c (the source of ``bem_energy.potentials.GRADED_ZONE_ELEMENTS``): F_A over Eq. 39 and
+    its excess over the finest grid's."""
+    record = _timing.provenance_record()
+    headers = [
+        "k",
+        *[f"{n:g} per l_c" for n in RESOLUTION_COUNTS],
+        *[f"excess at {n:g}" for n in RESOLUTION_COUNTS[:-1]],
+    ]
+    rows, raw = [], []
+    for k in RESOLUTION_KS:
+        scene = graded_scene("circle", k)
+        exact = T.graded_adhesion_force(E0=1.0, c0=1.0, k=k, radius=1.0, work=ZERO_RANGE_WORK)
+        rho = range_for_process_zone(
+            modulus=process_zone_modulus(scene.material), work=ZERO_RANGE_WORK, length=ratio, exponent=k
+        )
+        Fs = []
+        for n in RESOLUTION_COUNTS:
+            h = min(ratio / n, 1.0 / be.ZeroRangeSettings().minimum_elements_per_radius)
+            res = be.pull_off(
+                scene,
+                replace(be.ZeroRangeSettings().energy, grid=cs.Grid(spacing=h)),
+                spacing=h,
+                potential=be.Potential(ZERO_RANGE_WORK, rho),
+            )
+            F = T.force_at_nominal_area(
+                res.pulloff_force, area=cs.rasterise(scene.indenter.shape, h).area, nominal_area=math.pi, k=k
+            )
+            Fs.append(F / exact)
+            raw.append(
+                {
+                    "k": k,
+                    "elements_per_process_zone": n,
+                    "spacing": h,
+                    "force_over_eq39": F / exact,
+                    "converged": bool(res.converged),
+                }
+            )
+            print(f"k = {k:g}, {n:g} per l_c (h = {h:.4g}): F / Eq. 39 = {F / exact:.5f}", flush=True)
+        rows.append([f"{k:g}", *[f"{f:.5f}" for f in Fs], *[f"{100 * (f / Fs[-1] - 1):+.2f} %" for f in Fs[:-1]]])
+    print(_timing.table(rows, headers), flush=True)
+    if update:
+        _timing.write_doc_table("accuracy_graded_zone_resolution", headers, rows, record, runs=raw)
+
+
+def option(name: str, default):
+    if name not in sys.argv:
+        return default
+    i = sys.argv.index(name) + 1
+    vals = []
+    while i < len(sys.argv) and not sys.argv[i].startswith("--"):
+        vals.append(sys.argv[i])
+        i += 1
+    return vals
+
+
 if __name__ == "__main__":
     update = "--update" in sys.argv
-    if "--quick" in sys.argv:
+    if "--resolution" in sys.argv:
+        resolution_main(0.08, update)
+    elif "--zero-range" in sys.argv:
+        ratios = tuple(float(x) for x in option("--ratios", be.ZeroRangeSettings().ratios))
+        cache = Path(option("--cache", [str(Path(_timing.ROOT) / ".cache" / "graded_zero_range")])[0])
+        zero_range_main(ratios, cache, update)
+    elif "--quick" in sys.argv:
         main(Ns=(32, 48), lcs=(0.32, 0.16, 0.08), update=update)
     elif "--full" in sys.argv:
         main(lcs=(0.32, 0.16, 0.08, 0.04, 0.02), update=update)

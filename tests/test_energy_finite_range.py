@@ -149,6 +149,13 @@ def _rho(ratio, work=0.02):
     return math.sqrt(ratio * work)  # E* = 1, a = 1: l_c = rho^2 / w
 
 
+def _graded_rho(ratio, work=0.02, k=0.5):
+    from bem_energy.potentials import process_zone_modulus, range_for_process_zone
+
+    E = process_zone_modulus(cs.PowerLawGraded(1.0, 1.0, k))
+    return range_for_process_zone(modulus=E, work=work, length=ratio, exponent=k)
+
+
 #: pulling steps where a detaching trial can be told from an attached one only by a rule that
 #: scales with l_c / a: circles with s = 0.8 and 0.4, a JKR sphere (paraboloid, R = 2 a)
 #: whose contact shrinks over the whole pull, and a graded body (k = 0.5)
@@ -170,9 +177,10 @@ PEEL_CASES = {
         ),
         20,
     ),
+    # l_c = 0.06 a (s = 0.6) on the coarsest grid that resolves a graded zone (2 per l_c at k = 0.5)
     "graded k = 0.5": (
-        cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, 0.5), cs.Adhesion(0.02, 0.05)),
-        16,
+        cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, 0.5), cs.Adhesion(0.02, _graded_rho(0.06))),
+        34,
     ),
 }
 

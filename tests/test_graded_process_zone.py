@@ -1,0 +1,104 @@
+"""The process zone of a graded body (``bem_energy.potentials``): defined where the zero-range
+edge field reaches the potential's strength, as at k = 0, and resolved by its default grid.
+
+The definition is checked against the closed-form graded punch (Eqs. 34 and 39); the grid
+against a run with twice the elements per l_c, with the tolerance of the homogeneous default
+(2 elements per l_c are within 0.2 % of converged, ``PROCESS_ZONE_ELEMENTS``).  Two mutants are
+kept: the earlier definition without c_k, and the graded body on the homogeneous count.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import pytest
+
+import bem_energy as be
+import contact_scene as cs
+from bem_energy import potentials
+from bem_energy.potentials import process_zone_exponent, process_zone_modulus, range_for_process_zone
+from contact_scene import theory as T
+
+
+def edge_distance(k: float, E0: float, c0: float, a: float, w: float, rho: float) -> float:
+    """Where the exact pull-off pressure P0 (a^2 - r^2)^((k-1)/2) of the circular punch on a
+    graded body (force F_A of Eq. 39) equals w / rho: its distance from the edge."""
+    F = T.graded_adhesion_force(E0=E0, c0=c0, k=k, radius=a, work=w)
+    P0 = F * (1 + k) / (2 * math.pi * a ** (1 + k))
+    x = (P0 * rho / w) ** (2 / (1 - k))  # a^2 - r^2 there
+    return a - math.sqrt(a * a - x) if x < a * a else a
+
+
+def range_at(s: float, k: float, E0: float, c0: float, a: float, w: float) -> float:
+    """The range whose edge distance (:func:`edge_distance`) is ``s``, by bisection in log."""
+    lo, hi = 1e-12, 10.0
+    for _ in range(200):
+        mid = math.sqrt(lo * hi)
+        lo, hi = (mid, hi) if edge_distance(k, E0, c0, a, w, mid) < s else (lo, mid)
+    return math.sqrt(lo * hi)
+
+
+@pytest.mark.parametrize("k", [-0.5, 0.0, 0.25, 0.5, 0.75, 0.9])
+def test_process_zone_is_pi_times_where_the_edge_field_reaches_the_strength(k):
+    """l_c = pi s_k for every k (E* rho^2 / w at k = 0), in the limit rho -> 0 where the edge
+    field is the whole story: the offset falls like s_k / a."""
+    E0, c0, a, w = 2.0, 1.3, 1.7, 0.3
+    mat = cs.PowerLawGraded(E0, c0, k)
+    E, kk = process_zone_modulus(mat), process_zone_exponent(mat)
+    for s_over_a in (1e-3, 1e-4):
+        rho = range_at(s_over_a * a, k, E0, c0, a, w)
+        s = edge_distance(k, E0, c0, a, w, rho)
+        lc = be.process_zone_length(modulus=E, work=w, range=rho, exponent=kk)
+        assert lc / (math.pi * s) == pytest.approx(1.0, abs=2 * s_over_a)
+
+
+def test_the_definition_without_its_constant_is_caught(monkeypatch):
+    """Mutant: the earlier l_c^(1-k) = E_k rho^2 / w puts the zone pi^(k/(1-k)) off (pi at k = 0.5)."""
+    monkeypatch.setattr(potentials, "process_zone_factor", lambda k: 1.0)
+    E0, c0, a, w, k = 2.0, 1.3, 1.7, 0.3, 0.5
+    E = process_zone_modulus(cs.PowerLawGraded(E0, c0, k))
+    rho = range_at(1e-4 * a, k, E0, c0, a, w)
+    lc = be.process_zone_length(modulus=E, work=w, range=rho, exponent=k)
+    assert lc / (math.pi * edge_distance(k, E0, c0, a, w, rho)) == pytest.approx(math.pi, rel=1e-2)
+
+
+RATIO = 0.08  # l_c / a of the grid check: the study's (benchmarks/study_graded_shape_ratio.py --resolution)
+
+
+def _pull_off(k: float, spacing: float) -> float:
+    scene = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, k), cs.Adhesion(1.0))
+    rho = range_for_process_zone(modulus=process_zone_modulus(scene.material), work=1.0, length=RATIO, exponent=k)
+    res = be.pull_off(
+        scene,
+        replace(be.ZeroRangeSettings().energy, grid=cs.Grid(spacing=spacing)),
+        spacing=spacing,
+        potential=be.Potential(1.0, rho),
+    )
+    assert res.converged and res.detached
+    return T.force_at_nominal_area(
+        res.pulloff_force, area=cs.rasterise(scene.indenter.shape, spacing).area, nominal_area=math.pi, k=k
+    )
+
+
+def _default_against_twice(k: float) -> float:
+    per = be.ZeroRangeSettings().elements_per_process_zone * potentials.graded_zone_elements(k)
+    return _pull_off(k, RATIO / per) / _pull_off(k, RATIO / (2 * per)) - 1.0
+
+
+#: the homogeneous default's distance from converged (0.18 % at l_c = 0.08 a), with room for
+#: the graded one's (0.15 % at k = 0.5 against 16 per l_c)
+RESOLVED = 3e-3
+
+
+def test_graded_zone_is_resolved_like_a_homogeneous_one():
+    """At k = 0.5 the sequence's grid (2 x 2 elements per l_c) is as close to converged as the
+    homogeneous one: doubling the elements moves F_A by less than RESOLVED."""
+    assert abs(_default_against_twice(0.5)) < RESOLVED
+
+
+def test_the_homogeneous_count_on_a_graded_body_is_caught(monkeypatch):
+    """Mutant: the graded body on 2 elements per l_c overshoots by about 2 % (the zone is
+    trapped by the mesh)."""
+    monkeypatch.setattr(potentials, "graded_zone_elements", lambda k: 1.0)
+    assert _default_against_twice(0.5) > 3 * RESOLVED
