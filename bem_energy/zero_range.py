@@ -40,6 +40,7 @@ __all__ = [
     "SequenceInfo",
     "COARSE_LIMIT",
     "RATE_BRACKET",
+    "tail_rates",
 ]
 
 #: a sequence whose finest process zone is above this (in units of a) cannot see the cornered
@@ -140,7 +141,17 @@ def tail_bracket(h, F, rates: tuple[float, float] = RATE_BRACKET) -> tuple[float
     return low, high
 
 
-def richardson(h: np.ndarray, F: np.ndarray, rate: float | None = None):
+def tail_rates(exponent: float = 0.0) -> tuple[float, float]:
+    """The bracket of tail rates for a body of grading k: :data:`RATE_BRACKET` with its slow end
+    scaled by (1 - k) for k > 0.  A smooth edge's shortfall goes like (l_c / a)^((1-k)/2) (the
+    edge field's exponent, sqrt(l_c) at k = 0): the flat circle at k = 0.5 steps down by a
+    factor of about 2^0.25 per halving of l_c (benchmarks/study_graded_shape_ratio.py
+    --zero-range).  The fast end is kept, which widens the bracket."""
+    lo, hi = RATE_BRACKET
+    return (lo * (1.0 - exponent), hi) if exponent > 0 else (lo, hi)
+
+
+def richardson(h: np.ndarray, F: np.ndarray, rate: float | None = None, rates: tuple[float, float] = RATE_BRACKET):
     """Extrapolate F(h) to h = 0 and estimate the error of the extrapolation.
 
     ``rate`` None (default): F0 + c h^p with p fitted as well (needs three points); when no
@@ -150,7 +161,7 @@ def richardson(h: np.ndarray, F: np.ndarray, rate: float | None = None):
     fixed from one face biases another.  A given ``rate``: least squares with that rate.
 
     The estimate bounds abs(F0 - F(0)) if the tail's effective rate (:func:`tail_bracket`) lies in
-    :data:`RATE_BRACKET`: it is the larger distance from F0 to the two limits the finest step
+    ``rates`` (:data:`RATE_BRACKET`; :func:`tail_rates` on a graded body): it is the larger distance from F0 to the two limits the finest step
     then allows, so it covers a limit anywhere between them whichever procedure gave F0 (a
     fitted rate that overshoots, as the circle's 0.3 over its coarse ranges does, widens it).
     It is of the order of the last step, F_n - F_(n-1): a few points do not tell a tail going
@@ -167,6 +178,9 @@ def richardson(h: np.ndarray, F: np.ndarray, rate: float | None = None):
     rate : float or None, optional
         The power p of the leading term, > 0; fitted when None (with fewer than three points,
         1/2).
+    rates : tuple of float, optional
+        The bracket of the tail's effective rate the estimate assumes (:func:`tail_bracket`);
+        :data:`RATE_BRACKET` by default, :func:`tail_rates` for a graded body.
 
     Returns
     -------
@@ -208,7 +222,7 @@ def richardson(h: np.ndarray, F: np.ndarray, rate: float | None = None):
     else:
         used = 0.5 if rate is None else float(rate)
         F0 = _lsq(h, F, [used])
-    est = max(abs(F0 - b) for b in tail_bracket(h, F))
+    est = max(abs(F0 - b) for b in tail_bracket(h, F, rates))
     return float(F0), used, float(est)
 
 
@@ -300,7 +314,8 @@ def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callb
         Fs = theory.force_at_nominal_area(raw, area=areas, nominal_area=scene.indenter.shape.area, k=k)
     else:
         Fs = raw
-    F0, used_rate, est = richardson(lcs, Fs, settings.rate)
+    rates = tail_rates(k)
+    F0, used_rate, est = richardson(lcs, Fs, settings.rate, rates)
     finest = runs[-1][2]
     how = "fitted" if settings.rate is None else "fixed"
     msgs = [
@@ -315,13 +330,13 @@ def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callb
     ]
     msgs.append(
         "accuracy estimate: the distance from the extrapolated force to the limits the finest step "
-        f"allows for a tail going like l_c^q, q = {RATE_BRACKET[0]:g} ... {RATE_BRACKET[1]:g}; a bound if the "
+        f"allows for a tail going like l_c^q, q = {rates[0]:g} ... {rates[1]:g}; a bound if the "
         "tail's rate lies there (validated on circle, square and triangle: see bem_energy.richardson)"
     )
     if min(settings.ratios) > VALIDATED_FINEST_RATIO:
         msgs.append(
             f"the finest l_c = {min(settings.ratios):g} a is coarser than the estimate is validated for "
-            f"({VALIDATED_FINEST_RATIO:g} a): the tail may be slower than l_c^{RATE_BRACKET[0]:g} there"
+            f"({VALIDATED_FINEST_RATIO:g} a): the tail may be slower than l_c^{rates[0]:g} there"
         )
     # a coarse sequence's estimate is validated on the circle only: on faces with corners the
     # extrapolation overshoots by about its own size (the coarse square 8.6 % above the reference
@@ -347,6 +362,7 @@ def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callb
             timings[phase] = timings.get(phase, 0.0) + v
     timings["extrapolation"] = max(0.0, (t1 - t0) - sum(timings.values()))
     assert finest.face_area is not None  # pull_off reports its grid's face area
+    bar = validated and ok and math.isfinite(est) and F0 > 0
     return replace(
         finest,
         pulloff_force=float(F0),
@@ -380,7 +396,7 @@ def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callb
             scene,
             spacing=finest.grid_spacing,
             face_area=finest.face_area,
-            zero_range_estimate=float(est / F0) if validated and ok and math.isfinite(est) and F0 > 0 else None,
-            zero_range_bracket=tail_bracket(lcs, Fs) if validated and ok and math.isfinite(est) and F0 > 0 else None,
+            zero_range_estimate=float(est / F0) if bar else None,
+            zero_range_bracket=tail_bracket(lcs, Fs, rates) if bar else None,
         ),
     )

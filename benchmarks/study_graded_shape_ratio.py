@@ -56,7 +56,7 @@ import bem_energy as be
 import bem_griffith as bg
 import contact_scene as cs
 from bem_energy.potentials import process_zone_modulus, range_for_process_zone
-from bem_energy.zero_range import sequence_range
+from bem_energy.zero_range import sequence_range, tail_bracket, tail_rates
 from contact_scene import theory as T
 
 FACES = {"circle": cs.Circle(1.0), "square": cs.Square(math.sqrt(math.pi))}  # both of area pi
@@ -177,7 +177,7 @@ def zero_range_limit(name: str, k: float, ratios, cache: Path) -> dict:
             for x in runs
         ]
     )
-    F0, rate, est = be.richardson(np.array(ratios, float), F)
+    F0, rate, est = be.richardson(np.array(ratios, float), F, None, tail_rates(k))
     return {
         "face": name,
         "k": k,
@@ -217,17 +217,45 @@ def zero_range_main(ratios, cache: Path, update: bool) -> None:
     rk = seqs["square", K]["limit"] / seqs["circle", K]["limit"]
     D = rk / r0
     bar = sum(q["relative_estimate"] for q in seqs.values())
-    rows.append(["D", f"{K:g}", *["" for _ in ratios], f"{D:.4f}", f"{100 * bar:.2f} %", "", "", ""])
+    rows.append(["D of the limits", f"{K:g}", *["" for _ in ratios], f"{D:.4f}", f"{100 * bar:.2f} %", "", "", ""])
+    # D at each range, and its own extrapolation (the graded tail bracket: the slower of the two)
+    Dseq = np.array(
+        [
+            (seqs["square", K]["forces"][i] / seqs["circle", K]["forces"][i])
+            / (seqs["square", 0.0]["forces"][i] / seqs["circle", 0.0]["forces"][i])
+            for i in range(len(ratios))
+        ]
+    )
+    h = np.array(ratios, float)
+    D0, Drate, Dest = be.richardson(h, Dseq, None, tail_rates(K))
+    Dlow, Dhigh = sorted(tail_bracket(h, Dseq, tail_rates(K)))
+    rate = "none" if Drate is None else f"{Drate:.2f}"
+    rows.append(
+        ["D per range", f"{K:g}", *[f"{x:.4f}" for x in Dseq], f"{D0:.4f}", f"{100 * Dest / D0:.2f} %", rate, "", ""]
+    )
     print(_timing.table(rows, headers), flush=True)
-    print(f"square/circle: k = 0 {r0:.4f}, k = {K:g} {rk:.4f}; D = {D:.4f} +- {D * bar:.4f}", flush=True)
+    print(
+        f"square/circle: k = 0 {r0:.4f}, k = {K:g} {rk:.4f}; D of the limits = {D:.4f} +- {D * bar:.4f}; "
+        f"D per range extrapolated {D0:.4f} +- {Dest:.4f} (tail bracket {Dlow:.4f} ... {Dhigh:.4f})",
+        flush=True,
+    )
     if update:
         _timing.write_doc_table(
             "accuracy_graded_zero_range",
             headers,
             rows,
             record,
-            sequences=[q for q in seqs.values()],
-            double_ratio={"value": D, "relative_bar": bar, "square_over_circle": {"0": r0, str(K): rk}},
+            sequences=list(seqs.values()),
+            double_ratio={
+                "of_the_limits": {"value": D, "relative_bar": bar, "square_over_circle": {"0": r0, str(K): rk}},
+                "per_range": {
+                    "values": Dseq.tolist(),
+                    "limit": D0,
+                    "estimate": Dest,
+                    "fitted_rate": Drate,
+                    "tail_bracket": [Dlow, Dhigh],
+                },
+            },
         )
 
 

@@ -3,15 +3,21 @@ edge field reaches the potential's strength, as at k = 0, and resolved by its de
 
 The definition is checked against the closed-form graded punch (Eqs. 34 and 39); the grid
 against a run with twice the elements per l_c, with the tolerance of the homogeneous default
-(2 elements per l_c are within 0.2 % of converged, ``PROCESS_ZONE_ELEMENTS``).  Two mutants are
-kept: the earlier definition without c_k, and the graded body on the homogeneous count.
+(2 elements per l_c are within 0.2 % of converged, ``PROCESS_ZONE_ELEMENTS``); the zero-range
+extrapolation's tail bracket against the graded circle's closed form.  Each check keeps its
+mutant: the earlier definition without c_k, the graded body on the homogeneous count, the
+homogeneous tail rates.
 """
 
 from __future__ import annotations
 
+import importlib
+import json
 import math
 from dataclasses import replace
+from pathlib import Path
 
+import numpy as np
 import pytest
 
 import bem_energy as be
@@ -19,6 +25,8 @@ import contact_scene as cs
 from bem_energy import potentials
 from bem_energy.potentials import process_zone_exponent, process_zone_modulus, range_for_process_zone
 from contact_scene import theory as T
+
+zr = importlib.import_module("bem_energy.zero_range")
 
 
 def edge_distance(k: float, E0: float, c0: float, a: float, w: float, rho: float) -> float:
@@ -102,3 +110,35 @@ def test_the_homogeneous_count_on_a_graded_body_is_caught(monkeypatch):
     trapped by the mesh)."""
     monkeypatch.setattr(potentials, "graded_zone_elements", lambda k: 1.0)
     assert _default_against_twice(0.5) > 3 * RESOLVED
+
+
+# -- the zero-range extrapolation on a graded body ------------------------------------------------
+
+GRADED_STUDY = Path(__file__).resolve().parents[1] / "docs" / "accuracy_graded_zero_range.json"
+
+
+def _circle_sequence(k: float):
+    doc = json.loads(GRADED_STUDY.read_text())
+    (seq,) = [q for q in doc["sequences"] if q["face"] == "circle" and q["k"] == k]
+    assert seq["converged"]
+    return np.array(seq["ratios"], float), np.array(seq["forces"])
+
+
+@pytest.mark.parametrize("k", [0.0, 0.5])
+def test_graded_tail_bracket_contains_the_closed_form(k):
+    """The flat circle's zero-range sequence (``study_graded_shape_ratio.py --zero-range``:
+    l_c / a = 0.08 ... 0.01, forces over Eq. 39): the limits the finest step allows for the
+    body's tail rates (:func:`tail_rates`) contain the exact 1, and the estimate covers the
+    extrapolation's error."""
+    h, F = _circle_sequence(k)
+    lo, hi = sorted(zr.tail_bracket(h, F, zr.tail_rates(k)))
+    assert lo <= 1.0 <= hi
+    F0, _, est = zr.richardson(h, F, None, zr.tail_rates(k))
+    assert abs(F0 - 1.0) <= est
+
+
+def test_the_homogeneous_tail_rates_on_a_graded_body_are_caught():
+    """Mutant: at k = 0.5 the shortfall goes like l_c^0.25 ... (steps shrink by 2^0.25 ... 2^0.34
+    per halving), and the homogeneous bracket (0.5 ... 1.5) ends below the exact value."""
+    h, F = _circle_sequence(0.5)
+    assert max(zr.tail_bracket(h, F, zr.RATE_BRACKET)) < 1.0
