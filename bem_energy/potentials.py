@@ -43,8 +43,8 @@ PROCESS_ZONE_ELEMENTS: dict[str, tuple[float, float]] = {"exponential": (1.0, 2.
 #: the k measured: the graded kernel is more local, so the opening rises more steeply across a
 #: zone of the same l_c.  Exponential potential, flat circle, l_c = 0.08 a, F_A against 16 per
 #: l_c (benchmarks/study_graded_shape_ratio.py --resolution): 2 per l_c is +0.46 % high at
-#: k = 0.25, +2.0 % at 0.5, +5.8 % at 0.75; 4 per l_c +0.11, +0.15, +2.3 %; 8 per l_c +0.02,
-#: (0.5: not run), +0.3 %; k = 0: +0.18 % at 2.  Interpolated in log between the points,
+#: k = 0.25, +2.0 % at 0.5, +5.8 % at 0.75; 4 per l_c +0.11, +0.17, +2.3 %; 8 per l_c +0.02,
+#: +0.02, +0.30 %; k = 0: +0.19 % at 2.  Interpolated in log between the points,
 #: extrapolated with the last slope past 0.75; k < 0 keeps the homogeneous count.
 GRADED_ZONE_ELEMENTS: tuple[tuple[float, float], ...] = ((0.0, 1.0), (0.25, 1.5), (0.5, 2.0), (0.75, 4.0))
 

@@ -11,7 +11,8 @@ areas, forces scaled to the nominal area, between
 * the Griffith BEM (Eq. 42's constant: the ratios do not depend on it) at 32 ... 96 elements
   per radius, and
 * the energy BEM at finite process zones l_c / a = 0.32 ... 0.02 with 8 elements per l_c
-  (the graded process zone l_c^(1-k) = E_k rho^2 / w, ``bem_energy.potentials``),
+  (the graded process zone l_c^(1-k) = c_k E_k rho^2 / w, ``bem_energy.potentials``; 8 per l_c
+  is more than a graded zone needs, ``--resolution``),
 
 at k = 0.5.  The energy method is not a converged reference here: its circle alone still
 moves by percents per halving of l_c, so the table shows the trend, not a limit.  The default
