@@ -161,9 +161,10 @@ def richardson(h: np.ndarray, F: np.ndarray, rate: float | None = None, rates: t
     fixed from one face biases another.  A given ``rate``: least squares with that rate.
 
     The estimate bounds abs(F0 - F(0)) if the tail's effective rate (:func:`tail_bracket`) lies in
-    ``rates`` (:data:`RATE_BRACKET`; :func:`tail_rates` on a graded body): it is the larger distance from F0 to the two limits the finest step
-    then allows, so it covers a limit anywhere between them whichever procedure gave F0 (a
-    fitted rate that overshoots, as the circle's 0.3 over its coarse ranges does, widens it).
+    ``rates`` (:data:`RATE_BRACKET`; :func:`tail_rates` on a graded body): it is the larger
+    distance from F0 to the two limits the finest step then allows, so it covers a limit
+    anywhere between them whichever procedure gave F0 (a fitted rate that overshoots, as the
+    circle's 0.3 over its coarse ranges does, widens it).
     It is of the order of the last step, F_n - F_(n-1): a few points do not tell a tail going
     like sqrt(l_c) from one going like l_c, and a model fitted to them (the earlier spread
     between fits) fell short of the error by up to a factor 30.
@@ -333,6 +334,12 @@ def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callb
         f"allows for a tail going like l_c^q, q = {rates[0]:g} ... {rates[1]:g}; a bound if the "
         "tail's rate lies there (validated on circle, square and triangle: see bem_energy.richardson)"
     )
+    if k != 0:
+        msgs.append(
+            f"graded body (k = {k:g}): the tail bracket starts at (1-k)/2 = {rates[0]:g}; it is checked on the "
+            "flat circle at k = 0.5 only (l_c/a = 0.08 ... 0.01: +4.2 % error, 9.4 % estimate; "
+            "benchmarks/study_graded_shape_ratio.py --zero-range), and a graded limit converges slowly"
+        )
     if min(settings.ratios) > VALIDATED_FINEST_RATIO:
         msgs.append(
             f"the finest l_c = {min(settings.ratios):g} a is coarser than the estimate is validated for "

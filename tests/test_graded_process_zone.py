@@ -142,3 +142,19 @@ def test_the_homogeneous_tail_rates_on_a_graded_body_are_caught():
     per halving), and the homogeneous bracket (0.5 ... 1.5) ends below the exact value."""
     h, F = _circle_sequence(0.5)
     assert max(zr.tail_bracket(h, F, zr.RATE_BRACKET)) < 1.0
+
+
+def test_zero_range_on_a_graded_body_uses_its_tail_rates():
+    """``bem_energy.zero_range`` on a graded circle (coarse ranges, seconds): its force bar's
+    interval is the graded tail bracket of its own sequence, not the homogeneous one, and its
+    messages say how far that bracket is checked."""
+    scene = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, 0.5), cs.Adhesion(1.0))
+    res = be.zero_range(scene, be.ZeroRangeSettings(ratios=(0.32, 0.16, 0.08)))
+    assert res.converged
+    seq = res.info["zero_range"]
+    h, F = np.array(seq["process_zone_ratios"]), np.array(seq["pulloff_forces"])
+    graded = sorted(zr.tail_bracket(h, F, zr.tail_rates(0.5)))
+    homogeneous = sorted(zr.tail_bracket(h, F))
+    assert graded != pytest.approx(homogeneous, rel=1e-3)
+    assert res.error_bars["pulloff_force"].interval == pytest.approx(tuple(graded), rel=1e-12)
+    assert any("graded body (k = 0.5)" in m for m in res.messages)
