@@ -58,10 +58,10 @@ import numpy as np
 import bem_griffith as bg
 import contact_scene as cs
 from bem_energy.error_model import error_bars as energy_error_bars
-from bem_energy.potentials import Potential, process_zone_modulus, range_for_process_zone
+from bem_energy.potentials import Potential
 from bem_energy.settings import ZeroRangeSettings
 from bem_energy.solver import pull_off
-from bem_energy.zero_range import richardson
+from bem_energy.zero_range import richardson, sequence_range
 from contact_scene import theory as T
 from crossval.suite import scene as builtin_scene
 
@@ -292,11 +292,8 @@ def griffith_sweep(face: str, criterion: str, resolutions, cache: Path) -> list[
 def energy_range(face: str, ratio: float, zs: ZeroRangeSettings) -> dict:
     """One finite range of the zero-range sequence, as ``bem_energy.zero_range`` runs it."""
     scene = face_scene(face)
-    a = scene.indenter.shape.equivalent_radius
     w = scene.adhesion.work_of_adhesion
-    lc = ratio * a
-    rho = range_for_process_zone(modulus=process_zone_modulus(scene.material), work=w, length=lc)
-    spacing = min(lc / zs.elements_per_process_zone, a / zs.minimum_elements_per_radius)
+    rho, spacing = sequence_range(scene, ratio, zs)
     es = replace(zs.energy, grid=cs.Grid(spacing=spacing))
     res = pull_off(scene, es, spacing=spacing, potential=Potential(w, rho, zs.potential))
     assert res.face_area is not None
