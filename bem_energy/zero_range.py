@@ -34,6 +34,7 @@ from .solver import EnergyInfo, pull_off
 __all__ = [
     "zero_range",
     "sequence_range",
+    "sequence_run",
     "richardson",
     "tail_bracket",
     "ZeroRangeInfo",
@@ -242,6 +243,21 @@ def sequence_range(scene: Scene, ratio: float, settings: ZeroRangeSettings) -> t
     return rho, min(lc / per, a / settings.minimum_elements_per_radius)
 
 
+def sequence_run(scene: Scene, ratio: float, settings: ZeroRangeSettings, *, callback=None) -> tuple[float, Result]:
+    """One range of a zero-range sequence, at l_c = ``ratio`` a on its own grid
+    (:func:`sequence_range`): its range rho and the finite-range pull-off."""
+    rho, spacing = sequence_range(scene, ratio, settings)
+    log.info(
+        "l_c/a = %g: rho = %.4g, %d elements per radius",
+        ratio,
+        rho,
+        round(scene.indenter.shape.equivalent_radius / spacing),
+    )
+    potential = Potential(scene.adhesion.work_of_adhesion, rho, settings.potential)
+    es = replace(settings.energy, grid=Grid(spacing=spacing))
+    return rho, pull_off(scene, es, spacing=spacing, potential=potential, callback=callback)
+
+
 def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callback=None) -> Result:
     """The zero-range (JKR / Griffith) pull-off by extrapolating finite ranges to l_c -> 0.
 
@@ -286,24 +302,13 @@ def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callb
     """
     settings = settings or ZeroRangeSettings()
     t0 = time.perf_counter()
-    w = scene.adhesion.work_of_adhesion
     a = scene.indenter.shape.equivalent_radius
     k = process_zone_exponent(scene.material)
     runs = []
     for i, r in enumerate(settings.ratios, 1):
-        lc = r * a
-        rho, spacing = sequence_range(scene, r, settings)
-        es = replace(settings.energy, grid=Grid(spacing=spacing))
-        log.info(
-            "range %d of %d: l_c/a = %g (rho = %.4g, %d elements per radius)",
-            i,
-            len(settings.ratios),
-            r,
-            rho,
-            round(a / spacing),
-        )
-        res = pull_off(scene, es, spacing=spacing, potential=Potential(w, rho, settings.potential), callback=callback)
-        runs.append((lc, rho, res))
+        log.info("range %d of %d: l_c/a = %g", i, len(settings.ratios), r)
+        rho, res = sequence_run(scene, r, settings, callback=callback)
+        runs.append((r * a, rho, res))
     lcs = np.array([x[0] for x in runs])
     raw = np.array([x[2].pulloff_force for x in runs])
     ds = np.array([x[2].pulloff_approach for x in runs])

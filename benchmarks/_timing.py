@@ -92,6 +92,27 @@ def command() -> str:
     return shlex.join(["python", script, *sys.argv[1:]])
 
 
+def cache_file(cache: Path, *key) -> Path:
+    """The JSON file of one cached result: the key's parts joined by double underscores."""
+    return cache / ("__".join(str(k) for k in key) + ".json")
+
+
+def cached(cache: Path, key: tuple, compute) -> dict:
+    """The cached row under ``key``, else ``compute()``'s dict, stamped with its wall and CPU
+    time and the revision, written atomically (a run killed mid-write leaves no row)."""
+    path = cache_file(cache, *key)
+    if path.exists():
+        return json.loads(path.read_text())
+    t, c = time.perf_counter(), time.process_time()
+    row = compute()
+    row.update(wall_s=time.perf_counter() - t, cpu_s=time.process_time() - c, revision=revision())
+    cache.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_suffix(".tmp")
+    tmp.write_text(json.dumps(row, indent=1))
+    os.replace(tmp, path)
+    return row
+
+
 def write_doc_table(name: str, headers, rows, record: dict, **extra) -> Path:
     """Write ``docs/<name>.json``, the table ``benchmarks/docs_tables.py`` renders into the docs.
 

@@ -48,7 +48,6 @@ import os
 import platform
 import subprocess
 import sys
-import time
 from dataclasses import replace
 from pathlib import Path
 
@@ -58,10 +57,8 @@ import numpy as np
 import bem_griffith as bg
 import contact_scene as cs
 from bem_energy.error_model import error_bars as energy_error_bars
-from bem_energy.potentials import Potential
 from bem_energy.settings import ZeroRangeSettings
-from bem_energy.solver import pull_off
-from bem_energy.zero_range import richardson, sequence_range
+from bem_energy.zero_range import richardson, sequence_run
 from contact_scene import theory as T
 from crossval.suite import scene as builtin_scene
 
@@ -143,22 +140,7 @@ def revision() -> str:
 # -- cache ------------------------------------------------------------------------------------
 
 
-def cache_file(cache: Path, *key) -> Path:
-    return cache / ("__".join(str(k) for k in key) + ".json")
-
-
-def cached(cache: Path, key: tuple, compute) -> dict:
-    path = cache_file(cache, *key)
-    if path.exists():
-        return json.loads(path.read_text())
-    t, c = time.perf_counter(), time.process_time()
-    row = compute()
-    row.update(wall_s=time.perf_counter() - t, cpu_s=time.process_time() - c, revision=revision())
-    cache.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_suffix(".tmp")
-    tmp.write_text(json.dumps(row, indent=1))
-    os.replace(tmp, path)
-    return row
+cache_file, cached = _timing.cache_file, _timing.cached
 
 
 def seed(cache: Path, doc: dict) -> dict[str, int]:
@@ -291,17 +273,13 @@ def griffith_sweep(face: str, criterion: str, resolutions, cache: Path) -> list[
 
 def energy_range(face: str, ratio: float, zs: ZeroRangeSettings) -> dict:
     """One finite range of the zero-range sequence, as ``bem_energy.zero_range`` runs it."""
-    scene = face_scene(face)
-    w = scene.adhesion.work_of_adhesion
-    rho, spacing = sequence_range(scene, ratio, zs)
-    es = replace(zs.energy, grid=cs.Grid(spacing=spacing))
-    res = pull_off(scene, es, spacing=spacing, potential=Potential(w, rho, zs.potential))
+    rho, res = sequence_run(face_scene(face), ratio, zs)
     assert res.face_area is not None
     return {
         "face": face,
         "ratio": ratio,
         "range": rho,
-        "spacing": spacing,
+        "spacing": res.grid_spacing,
         "pulloff_force": res.pulloff_force,
         "pulloff_approach": res.pulloff_approach,
         "stiffness": res.stiffness,

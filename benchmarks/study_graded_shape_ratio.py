@@ -42,22 +42,19 @@ docs/accuracy_graded_zone_resolution.json.
 
 from __future__ import annotations
 
-import json
 import math
-import os
 import sys
-import time
 from dataclasses import replace
 from pathlib import Path
 
-import _timing  # noqa: F401
+import _timing
 import numpy as np
 
 import bem_energy as be
 import bem_griffith as bg
 import contact_scene as cs
 from bem_energy.potentials import process_zone_modulus, range_for_process_zone
-from bem_energy.zero_range import sequence_range, tail_bracket, tail_rates
+from bem_energy.zero_range import sequence_run, tail_bracket, tail_rates
 from contact_scene import theory as T
 
 FACES = {"circle": cs.Circle(1.0), "square": cs.Square(math.sqrt(math.pi))}  # both of area pi
@@ -128,37 +125,22 @@ def graded_scene(name: str, k: float) -> cs.Scene:
 
 def zero_range_run(name: str, k: float, ratio: float, cache: Path) -> dict:
     """One range of the zero-range sequence, as ``bem_energy.zero_range`` runs it, cached."""
-    path = cache / f"{name}__k{k:g}__{ratio:g}.json"
-    if path.exists():
-        return json.loads(path.read_text())
-    zs = be.ZeroRangeSettings()
-    scene = graded_scene(name, k)
-    rho, spacing = sequence_range(scene, ratio, zs)
-    c0 = time.process_time()
-    res = be.pull_off(
-        scene,
-        replace(zs.energy, grid=cs.Grid(spacing=spacing)),
-        spacing=spacing,
-        potential=be.Potential(ZERO_RANGE_WORK, rho, zs.potential),
-    )
-    row = {
-        "face": name,
-        "k": k,
-        "ratio": ratio,
-        "range": rho,
-        "spacing": spacing,
-        "pulloff_force": res.pulloff_force,
-        "face_area": cs.rasterise(scene.indenter.shape, spacing).area,
-        "converged": bool(res.converged and res.detached),
-        "messages": list(res.messages) if not res.converged else [],
-        "cpu_s": time.process_time() - c0,
-        "revision": _timing.provenance_record().get("revision"),
-    }
-    cache.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_suffix(".tmp")
-    tmp.write_text(json.dumps(row, indent=1))
-    os.replace(tmp, path)
-    return row
+
+    def compute() -> dict:
+        rho, res = sequence_run(graded_scene(name, k), ratio, be.ZeroRangeSettings())
+        return {
+            "face": name,
+            "k": k,
+            "ratio": ratio,
+            "range": rho,
+            "spacing": res.grid_spacing,
+            "pulloff_force": res.pulloff_force,
+            "face_area": res.face_area,
+            "converged": bool(res.converged and res.detached),
+            "messages": list(res.messages) if not res.converged else [],
+        }
+
+    return _timing.cached(cache, (name, f"k{k:g}", ratio), compute)
 
 
 def zero_range_limit(name: str, k: float, ratios, cache: Path) -> dict:
@@ -277,6 +259,7 @@ def resolution_main(ratio: float, update: bool) -> None:
         *[f"excess at {n:g}" for n in RESOLUTION_COUNTS[:-1]],
     ]
     rows, raw = [], []
+    zs = be.ZeroRangeSettings()
     for k in RESOLUTION_KS:
         scene = graded_scene("circle", k)
         exact = T.graded_adhesion_force(E0=1.0, c0=1.0, k=k, radius=1.0, work=ZERO_RANGE_WORK)
@@ -285,10 +268,10 @@ def resolution_main(ratio: float, update: bool) -> None:
         )
         Fs = []
         for n in RESOLUTION_COUNTS:
-            h = min(ratio / n, 1.0 / be.ZeroRangeSettings().minimum_elements_per_radius)
+            h = min(ratio / n, 1.0 / zs.minimum_elements_per_radius)
             res = be.pull_off(
                 scene,
-                replace(be.ZeroRangeSettings().energy, grid=cs.Grid(spacing=h)),
+                replace(zs.energy, grid=cs.Grid(spacing=h)),
                 spacing=h,
                 potential=be.Potential(ZERO_RANGE_WORK, rho),
             )
