@@ -192,9 +192,9 @@ def process_zone_factor(exponent: float) -> float:
     edge with pi s_k^(1-k) = pi^k c_k E_k rho^2 / w (psi(k) of Eq. 40 reduces the constants to
     cos(k pi / 2)).  Defining l_c by l_c^(1-k) = c_k E_k rho^2 / w makes l_c = pi s_k for every
     k, so that a grid with n elements per l_c resolves the zone of a graded body as it does a
-    homogeneous one (at k = 0, l_c = E* rho^2 / w = pi s_0).  Without c_k (the earlier
-    definition) the zone at k = 0.5 was pi times shorter than its l_c said, and 2 elements per
-    such l_c overshot Eq. 39 by 3 % at l_c = 0.08 a (benchmarks/study_graded_shape_ratio.py).
+    homogeneous one (at k = 0, l_c = E* rho^2 / w = pi s_0).  Without c_k the zone at k = 0.5
+    is pi times shorter than l_c^(1-k) = E_k rho^2 / w says, and 2 elements per such l_c trap it
+    (the force overshoots Eq. 39; tests/test_graded_process_zone.py).
     """
     if exponent == 0:
         return 1.0

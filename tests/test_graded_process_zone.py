@@ -5,7 +5,7 @@ The definition is checked against the closed-form graded punch (Eqs. 34 and 39);
 against a run with twice the elements per l_c, with the tolerance of the homogeneous default
 (2 elements per l_c are within 0.2 % of converged, ``PROCESS_ZONE_ELEMENTS``); the zero-range
 extrapolation's tail bracket against the graded circle's closed form.  Each check keeps its
-mutant: the earlier definition without c_k, the graded body on the homogeneous count, the
+mutant: the definition without c_k, the graded body on the homogeneous count, the
 homogeneous tail rates.
 """
 
@@ -62,7 +62,7 @@ def test_process_zone_is_pi_times_where_the_edge_field_reaches_the_strength(k):
 
 
 def test_the_definition_without_its_constant_is_caught(monkeypatch):
-    """Mutant: the earlier l_c^(1-k) = E_k rho^2 / w puts the zone pi^(k/(1-k)) off (pi at k = 0.5)."""
+    """Mutant: l_c^(1-k) = E_k rho^2 / w without c_k puts the zone pi^(k/(1-k)) off (pi at k = 0.5)."""
     monkeypatch.setattr(potentials, "process_zone_factor", lambda k: 1.0)
     E0, c0, a, w, k = 2.0, 1.3, 1.7, 0.3, 0.5
     E = process_zone_modulus(cs.PowerLawGraded(E0, c0, k))
