@@ -144,6 +144,7 @@ def pull(
                     adhesive,
                     tolerance=snap_tolerance,
                     locate_detachment=eq.settings.locate_detachment,
+                    force_tolerance=eq.settings.peak_tolerance,
                 )
                 out.snap_off = snap
                 d_next, m_new = snap.detached_approach, snap.detached_state

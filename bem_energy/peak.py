@@ -22,7 +22,25 @@ from .minimisers import Minimum
 if TYPE_CHECKING:
     from .continuation import LoadingPath
 
-__all__ = ["SnapOff", "PullOffPoint", "locate_snap_off", "fold_vertex", "force_maximum"]
+__all__ = [
+    "SnapOff",
+    "PullOffPoint",
+    "locate_snap_off",
+    "fold_vertex",
+    "force_maximum",
+    "flattening_slope",
+    "brent_tolerance",
+]
+
+#: the last secant slope of the tension must be below this fraction of the one before for the
+#: attached points to count as flattening toward a smooth maximum (a clear bend, not the
+#: path's jaggedness), which lets the snap-off search stop on a bound of the tension
+FLATTENING = 0.5
+
+#: the trial that should end the snap-off search goes this fraction of the way to where the
+#: tension bound meets the tolerance, and only where that is at least 1/``CLOSEST`` of the
+#: bracket's width
+CLOSING, CLOSEST = 0.9, 8.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -71,6 +89,26 @@ def fold_vertex(points) -> tuple[float, float] | None:
     return float(gamma - beta**2 / (4 * alpha)), float(F_mean + F_span * xv)
 
 
+def flattening_slope(points) -> float | None:
+    """The tension's slope (per unit of pull) over the last two of the attached points
+    ``points`` ((d, F) in pulling order), if the last three flatten clearly toward a smooth
+    maximum (the last secant slope below ``FLATTENING`` times the one before, both measured
+    in the direction of pulling); None otherwise (still rising steadily, as toward a fold).
+
+    Where the tension is concave beyond the last point, it stays below the tangent there and
+    so below the last point's tension plus this slope times the further pull."""
+    if len(points) < 3:
+        return None
+    (d1, F1), (d2, F2), (d3, F3) = points[-3:]
+    pull1, pull2 = d1 - d2, d2 - d3  # pulling lowers d
+    if pull1 <= 0 or pull2 <= 0:
+        return None
+    s1, s2 = (F1 - F2) / pull1, (F2 - F3) / pull2  # tension = -F
+    if s1 <= 0 or s2 >= FLATTENING * s1:
+        return None
+    return max(s2, 0.0)
+
+
 def locate_snap_off(
     eq: Equilibria,
     path: LoadingPath,
@@ -82,18 +120,40 @@ def locate_snap_off(
     *,
     tolerance: float,
     locate_detachment: bool = True,
+    force_tolerance: float | None = None,
 ) -> SnapOff:
     """Bisect between the attached state at ``d_att`` and the detached one at ``d_det`` until
     they are ``tolerance`` apart, every trial starting from the last attached state (a trial
     started from a detached one stays detached); attached trials join the loading path.
     Without ``locate_detachment`` the bisection stops as soon as attached states on the path
-    bracket a smooth maximum of the tension, which then no longer depends on the snap-off."""
+    bracket a smooth maximum of the tension, which then no longer depends on the snap-off.
+
+    With ``force_tolerance`` (relative to the largest tension) as well, it also stops once the
+    last attached points flatten toward a smooth maximum (:func:`flattening_slope`) so that
+    the tension between the last attached and the first detached state cannot exceed the
+    largest recorded one by more than that fraction (the tangent bound of a concave tension);
+    the next trial is then placed where the bound would meet the tolerance, next to the
+    attached state, rather than halfway: the trials that detach close to the snap-off creep
+    for longest, so one such trial is cheaper than the bisection's several."""
     fold_points = [(path.approach[-2], path.force[-2])] if len(path) > 1 else []
     fold_points.append((d_att, eq.force(m_att)))
     while d_att - d_det > tolerance:
         if not locate_detachment and path.largest.after is not None and path.largest.after[1]:
             break
         d_mid = 0.5 * (d_att + d_det)
+        if not locate_detachment and force_tolerance is not None:
+            slope = flattening_slope(fold_points)
+            if slope is not None:
+                largest = -path.largest.force  # the largest tension recorded
+                margin = largest * (1.0 + force_tolerance) + fold_points[-1][1]  # above the last tension
+                if slope * (d_att - d_det) <= margin:
+                    break
+                # just inside the bound, so that a detached trial there ends the search; a
+                # trial much closer than the bracket's width would mostly measure the path's
+                # jaggedness in the next slope, so the bracket is halved until it is not
+                reach = CLOSING * margin / slope
+                if reach >= (d_att - d_det) / CLOSEST:
+                    d_mid = max(d_mid, d_att - reach)
         m_mid = eq.pulling_trial(m_att.U, d_mid, adhesive)
         if eq.attached(m_mid, d_mid, adhesive):
             d_att, m_att = d_mid, m_mid
@@ -104,14 +164,37 @@ def locate_snap_off(
     return SnapOff(float(d_att), m_att, float(d_det), m_det, fold_vertex(fold_points), len(path) - 1)
 
 
-def _refine_smooth_maximum(eq: Equilibria, path: LoadingPath, tolerance: float) -> tuple[float, float]:
+def brent_tolerance(path: LoadingPath, tolerance: float, force_tolerance: float | None) -> float:
+    """Brent's tolerance on the approach of a smooth maximum: ``tolerance``, or with
+    ``force_tolerance`` (relative to the largest tension) the distance from the maximum at
+    which the parabola through the largest recorded tension and its two neighbours has lost
+    that fraction, if larger: closer than that the force no longer changes at the tolerance."""
+    j = path.largest.index
+    if force_tolerance is None or j < 1 or j + 1 >= len(path):
+        return tolerance
+    d = np.array(path.approach[j - 1 : j + 2])
+    F = np.array(path.force[j - 1 : j + 2])
+    if np.any(np.diff(d) == 0):
+        return tolerance
+    curvature = (
+        2.0 * ((F[2] - F[1]) / (d[2] - d[1]) - (F[1] - F[0]) / (d[1] - d[0])) / (d[2] - d[0])
+    )  # F'' of the parabola; a tension maximum is a minimum of F
+    if not curvature > 0:
+        return tolerance
+    return max(tolerance, float(np.sqrt(2.0 * force_tolerance * abs(F[1]) / curvature)))
+
+
+def _refine_smooth_maximum(
+    eq: Equilibria, path: LoadingPath, tolerance: float, force_tolerance: float | None = None
+) -> tuple[float, float]:
     """Brent on F(d) between the neighbours of the largest recorded tension, each trial warm-
-    started from that state: (F, d) at the minimum found.  The trials join the loading path in
-    loading order, between those neighbours."""
+    started from that state, to :func:`brent_tolerance`: (F, d) at the minimum found.  The
+    trials join the loading path in loading order, between those neighbours."""
     largest = path.largest
     # force_maximum calls this only for a recorded state with neighbours on both sides
     assert largest.U is not None and largest.before is not None and largest.after is not None
     lower_d, upper_d = sorted((largest.before, largest.after[0]))
+    xatol = brent_tolerance(path, tolerance, force_tolerance)
     extra = []
 
     start = largest.U
@@ -122,7 +205,7 @@ def _refine_smooth_maximum(eq: Equilibria, path: LoadingPath, tolerance: float) 
         extra.append((float(x), F_x, eq.contact_area(m, x)))
         return F_x
 
-    r = optimize.minimize_scalar(force_at, bounds=(lower_d, upper_d), method="bounded", options={"xatol": tolerance})
+    r = optimize.minimize_scalar(force_at, bounds=(lower_d, upper_d), method="bounded", options={"xatol": xatol})
     j = largest.index
     seg = sorted(
         [(path.approach[k], path.force[k], path.contact_area[k]) for k in (j - 1, j, j + 1)] + extra,
@@ -136,11 +219,18 @@ def _refine_smooth_maximum(eq: Equilibria, path: LoadingPath, tolerance: float) 
 
 
 def force_maximum(
-    eq: Equilibria, path: LoadingPath, snap: SnapOff | None, adhesive: bool, *, tolerance: float
+    eq: Equilibria,
+    path: LoadingPath,
+    snap: SnapOff | None,
+    adhesive: bool,
+    *,
+    tolerance: float,
+    force_tolerance: float | None = None,
 ) -> PullOffPoint:
     """The pull-off point of a finished loading path: the largest recorded tension, replaced
     by the fold's vertex when the tension grows up to the snap-off, or refined by Brent (to
-    ``tolerance`` in d) when a smooth maximum lies between two attached states."""
+    ``tolerance`` in d, or to :func:`brent_tolerance` with ``force_tolerance``) when a smooth
+    maximum lies between two attached states."""
     tensile = -np.array(path.force)
     i = int(np.argmax(tensile))
     pulloff = float(max(tensile[i], 0.0))
@@ -155,7 +245,7 @@ def force_maximum(
     ):
         return PullOffPoint(float(-snap.fold[1]), float(snap.fold[0]), "fold")
     if adhesive and largest.before is not None and largest.after is not None and largest.after[1]:
-        F, d = _refine_smooth_maximum(eq, path, tolerance)
+        F, d = _refine_smooth_maximum(eq, path, tolerance, force_tolerance)
         if -F > pulloff:
             return PullOffPoint(float(-F), d, "refined")
     return PullOffPoint(pulloff, pulloff_d, "step")

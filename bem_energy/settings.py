@@ -73,6 +73,16 @@ class EnergySettings:
         (True, the default).  False: stop there (the detachment approach is then known to the
         bracket's width only); the force maximum is refined by Brent either way, and a fold is
         still bisected.
+    peak_tolerance : float or None, optional
+        With ``locate_detachment=False``: refine the force maximum to this fraction of it, in
+        (0, 0.01], rather than to ``snap_tolerance`` in the approach alone.  The snap-off
+        search then stops once the last attached states flatten clearly toward a smooth
+        maximum and the tension cannot rise by more than this before the first detached state
+        (the tangent bound of a concave tension; its trial goes next to the attached state,
+        not halfway), and Brent stops where the parabola through the maximum's bracket has
+        lost less than this (``bem_energy.peak``).  A fold, where the tension still rises
+        steeply, is bisected to ``snap_tolerance`` as before.  None (the default): the
+        approach tolerance only.
     stop_peeling_trials : bool, optional
         Stop a pulling step whose contact falls below (1 - s) of its most during the
         minimisation, s = max(0.1, 10 l_c / a), and converge its detached state from U = 0
@@ -118,12 +128,18 @@ class EnergySettings:
     stop_peeling_trials: bool = flag(True)
     restart_on_wall_change: bool = flag(False)
     single_precision_directions: bool = flag(False)
+    peak_tolerance: float | None = real(None, gt=0, le=0.01, optional=True)
 
     def __post_init__(self):
         # a type, not a range
         if not isinstance(self.grid, Grid):
             raise SceneError("settings.grid", "must be a contact_scene.Grid")
         check_fields(self, "settings")
+
+
+#: the force tolerance of a zero-range sequence's ranges, relative to F_A: the smallest path
+#: noise measured (benchmarks/study_energy_noise.py, docs/performance.md)
+PEAK_TOLERANCE = 3e-4
 
 
 def sequence_energy_settings() -> EnergySettings:
@@ -134,8 +150,13 @@ def sequence_energy_settings() -> EnergySettings:
     (benchmarks/study_energy_noise.py), and a 4x looser one moved the coarse sequences'
     limits by 1e-3 where this keeps every range's force.  The search directions' pressures
     are computed in single precision (``single_precision_directions``): the finest ranges
-    dominate a sequence's time, and this moves their forces far less than the path noise."""
-    return EnergySettings(locate_detachment=False, single_precision_directions=True)
+    dominate a sequence's time, and this moves their forces far less than the path noise.
+    The force maximum is refined to ``PEAK_TOLERANCE`` of itself (``peak_tolerance``): the
+    smallest spread of F_A over continuation step counts measured (the circle at l_c = 0.04 a,
+    docs/performance.md; the finest ranges spread more, docs/references.md), so that no
+    refinement is paid for below the path noise.  On a circle it spares the snap-off search
+    the trials that detach within a hair of the snap-off, the slowest of a sequence."""
+    return EnergySettings(locate_detachment=False, single_precision_directions=True, peak_tolerance=PEAK_TOLERANCE)
 
 
 @dataclass(frozen=True)

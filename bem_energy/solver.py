@@ -178,7 +178,9 @@ def pull_off(
         snap_tolerance=tolerance,
         max_steps=20 * settings.steps + 100,
     )
-    peak = force_maximum(eq, path, outcome.snap_off, adhesive, tolerance=tolerance)
+    peak = force_maximum(
+        eq, path, outcome.snap_off, adhesive, tolerance=tolerance, force_tolerance=settings.peak_tolerance
+    )
     t3 = time.perf_counter()
 
     msgs = list(outcome.messages)

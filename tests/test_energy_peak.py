@@ -1,0 +1,180 @@
+"""The force maximum of a pull (``bem_energy.peak``) on synthetic attached branches.
+
+A fake set of equilibria stands in for the minimiser: attached states exist for d >= d_fold
+and their force is a given function of d, so that what the snap-off search and Brent find can
+be compared with the exact maximum.  Two branch shapes occur in the energy BEM: a smooth
+maximum shortly before the snap-off (finite range, peeling edge) and a tension still rising
+steeply into a fold, F - F* ~ sqrt(d - d*).  The force tolerance may stop the search early
+only on the first; on the second the bisection must run to the approach tolerance as before.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pytest
+
+from bem_energy import peak
+from bem_energy.continuation import LoadingPath
+
+
+@dataclass
+class FakeMinimum:
+    U: np.ndarray
+    force: float
+    attached: bool
+
+
+class Branch:
+    """Attached states for d >= d_fold with force ``F(d)`` (negative: tension); counts the
+    trials and where they were made."""
+
+    def __init__(self, F, d_fold):
+        self.F, self.d_fold = F, d_fold
+        self.trials: list[float] = []
+
+    def state(self, d):
+        attached = d >= self.d_fold
+        return FakeMinimum(np.zeros(1), self.F(d) if attached else 0.0, attached)
+
+    def pulling_trial(self, U0, d, adhesive):
+        self.trials.append(d)
+        return self.state(d)
+
+    def minimum(self, U0, d, adhesive):
+        self.trials.append(d)
+        return self.state(d)
+
+    def attached(self, m, d, adhesive):
+        return m.attached
+
+    def force(self, m):
+        return m.force
+
+    def contact_area(self, m, d):
+        return 1.0 if m.attached else 0.0
+
+
+def pull(branch: Branch, d_start, step, *, tolerance, locate_detachment=False, force_tolerance=None):
+    """Continuation in steps of ``step`` from ``d_start`` down to the first detached state, then
+    the snap-off search and the force maximum, as ``bem_energy.continuation.pull`` does."""
+    path = LoadingPath(branch)
+    d = d_start
+    m = branch.state(d)
+    path.record(d, m)
+    while True:
+        d_next = d - step
+        m_next = branch.pulling_trial(m.U, d_next, True)
+        if not m_next.attached:
+            snap = peak.locate_snap_off(
+                branch,
+                path,
+                d,
+                m,
+                d_next,
+                m_next,
+                True,
+                tolerance=tolerance,
+                locate_detachment=locate_detachment,
+                force_tolerance=force_tolerance,
+            )
+            path.record(snap.detached_approach, snap.detached_state, False)
+            break
+        path.record(d_next, m_next)
+        d, m = d_next, m_next
+    n_path = len(branch.trials)
+    point = peak.force_maximum(branch, path, snap, True, tolerance=tolerance, force_tolerance=force_tolerance)
+    return point, snap, n_path
+
+
+# a smooth maximum of tension 1 at d = -1.01, between two continuation steps, just before
+# the snap-off at d = -1.0103 (the circle's finest range looks like this: the tension
+# flattens, then the branch ends)
+def smooth(d):
+    return -(1.0 - 2.0 * (d + 1.01) ** 2)
+
+
+SMOOTH_FOLD = -1.0103
+# a tension rising into a fold at d* = -1.013 (F* = -1, between two continuation steps), as
+# toward the zero-range snap-off
+FOLD = -1.013
+
+
+def rising(d):
+    x = max(d - FOLD, 0.0)
+    return -(1.0 - 0.5 * math.sqrt(x) - 2.0 * x)  # d(F) is a parabola only near the fold
+
+
+STEP, TOL = 0.05, 1e-4
+
+
+@pytest.mark.parametrize("force_tolerance", [1e-4, 3e-4, 1e-3])
+def test_a_flattening_maximum_is_found_to_the_force_tolerance_with_fewer_trials(force_tolerance):
+    """Smooth maximum just before the snap-off: with the force tolerance the search ends on
+    the tangent bound of the concave tension, the largest tension found lies within that
+    fraction of the true one (1 here), and it takes fewer trials than bisecting the approach."""
+    exact = 1.0
+    plain = Branch(smooth, SMOOTH_FOLD)
+    p0, _, _ = pull(plain, -0.6, STEP, tolerance=TOL)
+    fast = Branch(smooth, SMOOTH_FOLD)
+    p1, _, _ = pull(fast, -0.6, STEP, tolerance=TOL, force_tolerance=force_tolerance)
+    assert p0.force == pytest.approx(exact, rel=1e-6)
+    assert exact * (1 - force_tolerance) <= p1.force <= exact * (1 + 1e-12)
+    assert len(fast.trials) < len(plain.trials)
+
+
+def test_a_rising_fold_is_still_bisected_to_the_approach_tolerance():
+    """Tension rising steeply into a fold: the last points do not flatten, so the force
+    tolerance changes nothing, trial for trial (the tangent bound would not hold there: a
+    bound from the last secant slope would stop with the fold's last 0.5 sqrt(width) missed)."""
+    plain = Branch(rising, FOLD)
+    p0, s0, _ = pull(plain, -0.6, STEP, tolerance=TOL)
+    fast = Branch(rising, FOLD)
+    p1, s1, _ = pull(fast, -0.6, STEP, tolerance=TOL, force_tolerance=1e-3)
+    assert fast.trials == plain.trials
+    assert p1 == p0
+    assert s1.attached_approach - s1.detached_approach <= TOL
+    assert p1.force == pytest.approx(1.0, abs=0.5 * math.sqrt(TOL))
+
+
+def test_the_bound_without_the_flattening_check_misses_a_fold(monkeypatch):
+    """The mutant the flattening check guards against: taking the last secant slope as a
+    bound whatever the shape stops the search while the tension still rises toward the fold,
+    and the force falls short of the bisected one by more than twice the tolerance."""
+    p0, _, _ = pull(Branch(rising, FOLD), -0.6, STEP, tolerance=TOL)
+    monkeypatch.setattr(peak, "FLATTENING", math.inf)
+    p1, _, _ = pull(Branch(rising, FOLD), -0.6, STEP, tolerance=TOL, force_tolerance=1e-3)
+    assert p1.force < p0.force * (1 - 2e-3)
+
+
+def test_flattening_slope():
+    """The last secant slope of the tension, only where it has fallen below half the one
+    before it (pulling lowers d; forces are negative in tension)."""
+    assert peak.flattening_slope([(0.0, -1.0), (-1.0, -2.0), (-2.0, -2.2)]) == pytest.approx(0.2)
+    assert peak.flattening_slope([(0.0, -1.0), (-1.0, -2.0), (-2.0, -2.6)]) is None  # 0.6 of the slope before
+    assert peak.flattening_slope([(0.0, -1.0), (-1.0, -2.0), (-2.0, -1.5)]) == 0.0  # past the maximum
+    assert peak.flattening_slope([(-1.0, -2.0), (-2.0, -2.2)]) is None  # two points: no shape
+
+
+def test_brent_tolerance_is_the_distance_at_which_the_parabola_loses_the_force_tolerance():
+    """For a recorded parabola F = -(1 - c (d - d0)^2), the distance at which it loses a
+    fraction f of its maximum is sqrt(f / c); never below the approach tolerance."""
+    c, d0, f = 3.0, -0.5, 2e-4
+
+    class Path:
+        approach = [-0.4, -0.5, -0.6]
+        force = [-(1 - c * (x - d0) ** 2) for x in approach]
+
+        class largest:
+            index = 1
+
+        def __len__(self):
+            return 3
+
+    assert peak.brent_tolerance(Path(), 1e-6, f) == pytest.approx(
+        math.sqrt(f / c) * math.sqrt(abs(Path.force[1])), rel=1e-9
+    )
+    assert peak.brent_tolerance(Path(), 1.0, f) == 1.0
+    assert peak.brent_tolerance(Path(), 1e-6, None) == 1e-6
