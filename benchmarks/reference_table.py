@@ -46,7 +46,6 @@ import datetime
 import json
 import os
 import platform
-import subprocess
 import sys
 from dataclasses import replace
 from pathlib import Path
@@ -126,15 +125,6 @@ def bounds(scene: cs.Scene) -> tuple[float, float]:
     shape = scene.indenter.shape
     low = T.lower_bound_force(E_star=E, work=w, incircle_radius=shape.incircle().radius)
     return low / T.upper_bound_force(E_star=E, work=w, area=shape.area), 1.0
-
-
-def revision() -> str:
-    try:
-        return subprocess.run(
-            ["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True, cwd=ROOT, check=True
-        ).stdout.strip()
-    except (OSError, subprocess.CalledProcessError):
-        return "unknown"
 
 
 # -- cache ------------------------------------------------------------------------------------
@@ -619,7 +609,7 @@ def write(cache: Path, criterion: str, ratios=None) -> None:
     zs = ZeroRangeSettings() if ratios is None else ZeroRangeSettings(ratios=tuple(ratios))
     lcs = ", ".join(f"{r:g}" for r in zs.ratios)
     when = datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")
-    rev = revision()
+    rev = _timing.revision()
     doc = {
         "description": (
             "Converged reference values of the built-in non-circular faces (issue #22): F_A / F_A,upper "
