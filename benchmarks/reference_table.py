@@ -56,8 +56,9 @@ import numpy as np
 import bem_griffith as bg
 import contact_scene as cs
 from bem_energy.error_model import error_bars as energy_error_bars
+from bem_energy.potentials import process_zone_exponent
 from bem_energy.settings import ZeroRangeSettings
-from bem_energy.zero_range import richardson, sequence_run
+from bem_energy.zero_range import richardson, sequence_run, tail_rates
 from contact_scene import theory as T
 from crossval.suite import scene as builtin_scene
 
@@ -319,7 +320,8 @@ def energy_limit(face: str, cache: Path, *, compute: bool = True, ratios=None, s
     # fit the sequence the table stores, so that a refit of it gives the stored limit exactly
     # (the fitted rate's misfit minimum is flat: a fit of the unscaled forces differs by ~1e-9)
     Fn = F / scale["pulloff_force"]
-    F0, rate, est = richardson(lcs, Fn, zs.rate)
+    # the tail bracket of the scene's body, as bem_energy.zero_range takes it
+    F0, rate, est = richardson(lcs, Fn, zs.rate, tail_rates(process_zone_exponent(scene.material)))
     finest = runs[-1]
     bars = energy_error_bars(scene, spacing=finest["spacing"], face_area=finest["face_area"], zero_range_estimate=1.0)
     return {
