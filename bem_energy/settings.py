@@ -73,16 +73,6 @@ class EnergySettings:
         (True, the default).  False: stop there (the detachment approach is then known to the
         bracket's width only); the force maximum is refined by Brent either way, and a fold is
         still bisected.
-    peak_tolerance : float or None, optional
-        With ``locate_detachment=False``: refine the force maximum to this fraction of it, in
-        (0, 0.01], rather than to ``snap_tolerance`` in the approach alone.  The snap-off
-        search then stops once the last attached states flatten clearly toward a smooth
-        maximum and the tension cannot rise by more than this before the first detached state
-        (the tangent bound of a concave tension; its trial goes next to the attached state,
-        not halfway), and Brent stops where the parabola through the maximum's bracket has
-        lost less than this (``bem_energy.peak``).  A fold, where the tension still rises
-        steeply, is bisected to ``snap_tolerance`` as before.  None (the default): the
-        approach tolerance only.
     stop_peeling_trials : bool, optional
         Stop a pulling step whose contact falls below (1 - s) of its most during the
         minimisation, s = max(0.1, 10 l_c / a), and converge its detached state from U = 0
@@ -107,6 +97,16 @@ class EnergySettings:
         rounding does not scale with the problem, so a problem scaled in its units then follows
         another path and its F_A agrees to the minimisers' tolerance instead of to
         double-precision round-off.
+    peak_tolerance : float or None, optional
+        Refine the force maximum to this fraction of it, in (0, 0.01], rather than to
+        ``snap_tolerance`` in the approach alone.  The snap-off search (with
+        ``locate_detachment=False``) then stops once the last attached states flatten clearly toward a smooth
+        maximum and the tension cannot rise by more than this before the first detached state
+        (the tangent bound of a concave tension; its trial goes next to the attached state,
+        not halfway), and Brent stops where the parabola through the maximum's bracket has
+        lost less than this (``bem_energy.peak``).  A fold, where the tension still rises
+        steeply, is bisected to ``snap_tolerance`` as before.  None (the default): the
+        approach tolerance only.
 
     Raises
     ------
