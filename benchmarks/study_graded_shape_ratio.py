@@ -8,7 +8,7 @@ that factor, so what can be checked independently is the ratio itself.  This scr
 the "double ratio" D(k) = [F_square / F_circle](k) / [F_square / F_circle](k = 0), equal
 areas, forces scaled to the nominal area, between
 
-* the Griffith BEM (Eq. 42's constant: the ratios do not depend on it) at 32 ... 96 elements
+* the Griffith BEM (Eq. 42's constant: the ratios do not depend on it) at 32 ... 181 elements
   per radius, and
 * the energy BEM at finite process zones l_c / a = 0.32 ... 0.02 with 8 elements per l_c
   (the graded process zone l_c^(1-k) = c_k E_k rho^2 / w, ``bem_energy.potentials``; 8 per l_c
@@ -100,7 +100,7 @@ def row(label, out):
     return [label, f"{r0:.4f}", f"{rk:.4f}", f"{rk / r0:.4f}"]
 
 
-def main(Ns=(32, 48, 64, 96), lcs=(0.32, 0.16, 0.08), update=False):
+def main(Ns=(32, 48, 64, 96, 128, 181), lcs=(0.32, 0.16, 0.08), update=False):
     record = _timing.provenance_record()
     headers = ["method", "square/circle k=0", f"square/circle k={K}", "D"]
     rows = []
