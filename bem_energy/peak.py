@@ -90,13 +90,16 @@ def fold_vertex(points) -> tuple[float, float] | None:
 
 
 def flattening_slope(points) -> float | None:
-    """The tension's slope (per unit of pull) over the last two of the attached points
-    ``points`` ((d, F) in pulling order), if the last three flatten clearly toward a smooth
-    maximum (the last secant slope below ``FLATTENING`` times the one before, both measured
-    in the direction of pulling); None otherwise (still rising steadily, as toward a fold).
+    """The tension's slope (per unit of pull, 0 if negative) over the last two of the
+    attached points ``points`` ((d, F) in pulling order), if the last three flatten clearly
+    toward a smooth maximum (the last secant slope below ``FLATTENING`` times the one before,
+    both measured in the direction of pulling); None otherwise (still rising steadily, as
+    toward a fold).
 
     Where the tension is concave beyond the last point, it stays below the tangent there and
-    so below the last point's tension plus this slope times the further pull."""
+    so below the last point's tension plus this slope times the further pull.  That concavity
+    is assumed, not checked: a tension that flattens and then steepens again into a fold
+    within the bracket would break the bound."""
     if len(points) < 3:
         return None
     (d1, F1), (d2, F2), (d3, F3) = points[-3:]
@@ -131,10 +134,11 @@ def locate_snap_off(
     With ``force_tolerance`` (relative to the largest tension) as well, it also stops once the
     last attached points flatten toward a smooth maximum (:func:`flattening_slope`) so that
     the tension between the last attached and the first detached state cannot exceed the
-    largest recorded one by more than that fraction (the tangent bound of a concave tension);
-    the next trial is then placed where the bound would meet the tolerance, next to the
-    attached state, rather than halfway: the trials that detach close to the snap-off creep
-    for longest, so one such trial is cheaper than the bisection's several."""
+    largest recorded one by more than that fraction (the tangent bound of a tension assumed
+    concave there).  While they flatten, the next trial goes ``CLOSING`` of the way to where
+    that bound would meet the tolerance, if that lies between 1/``CLOSEST`` and half of the
+    bracket's width from the attached state, else halfway: the trials that detach close to the
+    snap-off creep for longest, so one such trial is cheaper than the bisection's several."""
     fold_points = [(path.approach[-2], path.force[-2])] if len(path) > 1 else []
     fold_points.append((d_att, eq.force(m_att)))
     while d_att - d_det > tolerance:
@@ -143,15 +147,15 @@ def locate_snap_off(
         d_mid = 0.5 * (d_att + d_det)
         if not locate_detachment and force_tolerance is not None:
             slope = flattening_slope(fold_points)
-            if slope is not None:
-                largest = -path.largest.force  # the largest tension recorded
+            largest = -path.largest.force  # the largest tension recorded
+            if slope is not None and largest > 0:  # a relative tolerance needs a tension
                 margin = largest * (1.0 + force_tolerance) + fold_points[-1][1]  # above the last tension
                 if slope * (d_att - d_det) <= margin:
                     break
                 # just inside the bound, so that a detached trial there ends the search; a
                 # trial much closer than the bracket's width would mostly measure the path's
                 # jaggedness in the next slope, so the bracket is halved until it is not
-                reach = CLOSING * margin / slope
+                reach = CLOSING * margin / slope  # slope > 0 here: a zero slope has stopped
                 if reach >= (d_att - d_det) / CLOSEST:
                     d_mid = max(d_mid, d_att - reach)
         m_mid = eq.pulling_trial(m_att.U, d_mid, adhesive)
@@ -168,13 +172,15 @@ def brent_tolerance(path: LoadingPath, tolerance: float, force_tolerance: float 
     """Brent's tolerance on the approach of a smooth maximum: ``tolerance``, or with
     ``force_tolerance`` (relative to the largest tension) the distance from the maximum at
     which the parabola through the largest recorded tension and its two neighbours has lost
-    that fraction, if larger: closer than that the force no longer changes at the tolerance."""
+    that fraction, if larger.  scipy's bounded Brent ends with the minimum within 2/3 of its
+    ``xatol`` of the best point, so on that parabola the force found is within 4/9 of the
+    tolerance."""
     j = path.largest.index
     if force_tolerance is None or j < 1 or j + 1 >= len(path):
         return tolerance
     d = np.array(path.approach[j - 1 : j + 2])
     F = np.array(path.force[j - 1 : j + 2])
-    if np.any(np.diff(d) == 0):
+    if not (d[0] - d[1]) * (d[1] - d[2]) > 0:  # neighbours on both sides, distinct
         return tolerance
     curvature = (
         2.0 * ((F[2] - F[1]) / (d[2] - d[1]) - (F[1] - F[0]) / (d[1] - d[0])) / (d[2] - d[0])

@@ -100,13 +100,15 @@ class EnergySettings:
     peak_tolerance : float or None, optional
         Refine the force maximum to this fraction of it, in (0, 0.01], rather than to
         ``snap_tolerance`` in the approach alone.  The snap-off search (with
-        ``locate_detachment=False``) then stops once the last attached states flatten clearly toward a smooth
-        maximum and the tension cannot rise by more than this before the first detached state
-        (the tangent bound of a concave tension; its trial goes next to the attached state,
-        not halfway), and Brent stops where the parabola through the maximum's bracket has
-        lost less than this (``bem_energy.peak``).  A fold, where the tension still rises
-        steeply, is bisected to ``snap_tolerance`` as before.  None (the default): the
-        approach tolerance only.
+        ``locate_detachment=False``) then stops once the last three attached states flatten
+        clearly (the last secant slope of the tension below half the one before) and the
+        tension, assumed concave beyond them, cannot rise by more than this before the first
+        detached state; its trials go close to where that bound is met rather than halfway
+        (``bem_energy.peak.locate_snap_off``).  Brent's tolerance on a smooth maximum becomes
+        the distance at which the parabola through the maximum's bracket loses this fraction,
+        where that is the larger.  A tension that does not flatten, as toward a fold, is
+        bisected to ``snap_tolerance`` as before.  None (the default): the approach tolerance
+        only.
 
     Raises
     ------

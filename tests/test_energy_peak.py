@@ -159,13 +159,14 @@ def test_flattening_slope():
 
 
 def test_brent_tolerance_is_the_distance_at_which_the_parabola_loses_the_force_tolerance():
-    """For a recorded parabola F = -(1 - c (d - d0)^2), the distance at which it loses a
-    fraction f of its maximum is sqrt(f / c); never below the approach tolerance."""
-    c, d0, f = 3.0, -0.5, 2e-4
+    """For a recorded parabola F = -A (1 - c (d - d0)^2), sampled unevenly and off its
+    vertex, the distance at which it loses a fraction f of the middle point's tension is
+    sqrt(f |F_1| / (A c)); never below the approach tolerance."""
+    A, c, d0, f = 2.5, 3.0, -0.47, 2e-4
 
     class Path:
-        approach = [-0.4, -0.5, -0.6]
-        force = [-(1 - c * (x - d0) ** 2) for x in approach]
+        approach = [-0.4, -0.5, -0.62]
+        force = [-A * (1 - c * (x - d0) ** 2) for x in approach]
 
         class largest:
             index = 1
@@ -173,8 +174,57 @@ def test_brent_tolerance_is_the_distance_at_which_the_parabola_loses_the_force_t
         def __len__(self):
             return 3
 
-    assert peak.brent_tolerance(Path(), 1e-6, f) == pytest.approx(
-        math.sqrt(f / c) * math.sqrt(abs(Path.force[1])), rel=1e-9
-    )
+    expected = math.sqrt(f * abs(Path.force[1]) / (A * c))
+    assert peak.brent_tolerance(Path(), 1e-6, f) == pytest.approx(expected, rel=1e-9)
     assert peak.brent_tolerance(Path(), 1.0, f) == 1.0
     assert peak.brent_tolerance(Path(), 1e-6, None) == 1e-6
+    Path.approach = [-0.4, -0.5, -0.4]  # a turning point: no parabola
+    assert peak.brent_tolerance(Path(), 1e-6, f) == 1e-6
+
+
+# a maximum that the search meets only after its first chance to stop: the first attached
+# point it adds (d = -1.0125) lies 4.5e-4 below the maximum of 1 at d = -1.02, which is just
+# before the snap-off at -1.0205
+def sharp(d):
+    return -(1.0 - 8.0 * (d + 1.02) ** 2)
+
+
+SHARP_FOLD = -1.0205
+
+
+@pytest.mark.parametrize("force_tolerance", [1e-4, 3e-4])
+def test_the_search_stops_only_within_the_tolerance_and_its_placed_trials_pay(force_tolerance, monkeypatch):
+    """The tangent bound, not the first flattening, ends the search: the force lies within the
+    tolerance of the maximum although the first flattening point does not (a wrong bound, one
+    that stopped there, is caught); and placing the trials where the bound would be met takes
+    fewer trials than halving the bracket under the same bound."""
+    assert 1.0 + sharp(-1.0125) > force_tolerance  # the first chance to stop is too early
+    placed = Branch(sharp, SHARP_FOLD)
+    p, _, _ = pull(placed, -0.6, STEP, tolerance=TOL, force_tolerance=force_tolerance)
+    assert 1.0 - force_tolerance <= p.force <= 1.0 + 1e-12
+    monkeypatch.setattr(peak, "CLOSEST", math.inf)  # every trial halfway
+    halved = Branch(sharp, SHARP_FOLD)
+    p_halved, _, _ = pull(halved, -0.6, STEP, tolerance=TOL, force_tolerance=force_tolerance)
+    assert 1.0 - force_tolerance <= p_halved.force
+    assert len(placed.trials) < len(halved.trials)
+
+
+def test_brent_stops_at_the_force_tolerance_with_fewer_trials():
+    """A smooth maximum bracketed by attached continuation states (the snap-off far beyond):
+    with the force tolerance Brent's trials end within 4/9 of it of the maximum (1, at
+    d = -0.98, between two steps; a cubic term keeps the parabolic steps from being exact),
+    in fewer trials than to the approach tolerance."""
+
+    def bent(d):
+        x = d + 0.98
+        return -(1.0 - 3.0 * x**2 + 0.5 * x**3)
+
+    ftol = 3e-4
+    counts = []
+    for force_tolerance in (None, ftol):
+        branch = Branch(bent, -1.3)
+        p, _, n_path = pull(branch, -0.6, STEP, tolerance=TOL, force_tolerance=force_tolerance)
+        assert p.kind == "refined"
+        assert 1.0 - 4 / 9 * ftol <= p.force <= 1.0 + 1e-12
+        counts.append(len(branch.trials) - n_path)
+    assert counts[1] < counts[0]
