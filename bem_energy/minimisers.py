@@ -233,6 +233,12 @@ def _largest_magnitude(A: np.ndarray) -> float:
 # ---------------------------------------------------------------------------
 
 
+#: the projected CG is stalled when its projected gradient has not halved in FLAT_STEPS steps
+#: and the energy fell by less than FLAT_ENERGY of itself over them: round-off, for a sum over
+#: millions of cells (a converging iteration halves its gradient in a few steps)
+FLAT_STEPS, FLAT_ENERGY = 20, 1e-10
+
+
 def _projected_cg(
     prob,
     U0,
@@ -270,6 +276,10 @@ def _projected_cg(
     evals = 1
     potential = prob.potential if adhesive else None
     most_in_contact = 0
+    window_steps, window_pg, window_E = 0, math.inf, E  # the stagnation window (below)
+    # a flag, not ``direction_pressure_of is prob.pressure``: each access to a method makes a
+    # new bound-method object, so that identity never held and a second stall never ended
+    double_directions = not single_precision_directions
     # work arrays of the padded grid, reused across the iterations: a fresh array of a few
     # megabytes is fresh pages from the system, whose faults cost system time.  The products
     # of one iteration go into the first two; the trial state into the spare U and P, which
@@ -366,9 +376,19 @@ def _projected_cg(
             return Minimum(U, P, E, it, evals, False, pg, "line search failed")
         # a decrease found only 2^-40 along the model step is round-off in the energy: the
         # iteration has stagnated (l_c ~ Delta near a snap took 50 evaluations per step and
-        # 150,000 in one minimisation before this stop)
-        stalled = halvings >= 40
-        if stalled and (pg <= gtol or not single_precision_directions or direction_pressure_of is prob.pressure):
+        # 150,000 in one minimisation before this stop).  So has one whose projected gradient
+        # has not halved in FLAT_STEPS steps while the energy fell by less than
+        # FLAT_ENERGY of itself (a graded edge at 800 elements per radius: the same gradient,
+        # to four digits, for hundreds of iterations of about 25 halvings each, in double
+        # precision too, the energy moving at 1e-13 of itself)
+        if window_steps == 0 or pg < 0.5 * window_pg:
+            window_steps, window_pg, window_E = 0, pg, E
+        window_steps += 1
+        flat = window_steps >= FLAT_STEPS and window_E - En <= FLAT_ENERGY * abs(En)
+        if window_steps >= FLAT_STEPS:
+            window_steps = 0
+        stalled = halvings >= 40 or flat
+        if stalled and (pg <= gtol or double_directions):
             return Minimum(Un, Pn, En, it, evals, pg <= gtol, pg, "stagnated at round-off in the energy")
         spare_U, spare_P = U, P
         U, P, E, G, curvature_face = Un, Pn, En, Gn, curvature_face_n
@@ -378,10 +398,12 @@ def _projected_cg(
             # round-off while the double-precision gradient is still above gtol: go on in double
             # precision from a fresh evaluation (a stall there ends the minimisation as above)
             direction_pressure_of = prob.pressure
+            double_directions = True
             direction = None
             E, G, P, curvature_face = prob.energy_and_curvature(U, d, adhesive)
             evals += 1
             updated = False
+            window_steps = 0
             continue
         if it % 50 == 0:
             # refresh P from U: the incremental update accumulates round-off

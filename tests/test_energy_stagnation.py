@@ -12,6 +12,7 @@ tests/test_bem_energy.py).
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 
 import pytest
@@ -43,3 +44,37 @@ def test_single_precision_stall_continues_in_double_precision():
     ref = _square_45_range(single_precision=False)
     assert ref.converged, ref.messages
     assert res.pulloff_force == pytest.approx(ref.pulloff_force, rel=1e-6)
+
+
+def _pulling_step(monkeypatch, flat_steps, flat_energy, single_precision):
+    """One pulling step of the circle at l_c = 0.08 a (a peeling edge: several CG iterations)
+    with the stagnation window's constants replaced."""
+    import numpy as np
+
+    import bem_energy.minimisers as mins
+    from bem_energy.problem import build_problem
+
+    monkeypatch.setattr(mins, "FLAT_STEPS", flat_steps)
+    monkeypatch.setattr(mins, "FLAT_ENERGY", flat_energy)
+    w = 0.02
+    rho = range_for_process_zone(modulus=1.0, work=w, length=0.08)
+    scene = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.0), cs.Adhesion(w, rho))
+    prob = build_problem(scene, 1 / 24, Potential(w, rho))
+    attached = mins.minimise(prob, np.zeros(prob.padded), 0.05, True, method="pk")
+    return mins.minimise(
+        prob, attached.U, -0.3, True, method="pk", max_iterations=200, single_precision_directions=single_precision
+    )
+
+
+def test_a_stall_in_double_precision_ends_the_minimisation(monkeypatch):
+    """With a window that calls every step a stall, a single-precision minimisation goes on in
+    double precision after the first and stops, reporting the stagnation and not converged,
+    at the second; a double-precision one stops at the first.  (A second stall was once
+    continued for ever: the double-precision mode was recognised by comparing bound methods,
+    which are new objects at each access.)  With the default window the same step converges."""
+    for single, most in ((True, 2), (False, 1)):
+        m = _pulling_step(monkeypatch, 1, math.inf, single)
+        assert m.message == "stagnated at round-off in the energy" and m.iterations <= most
+        assert not m.converged
+    m = _pulling_step(monkeypatch, 20, 1e-10, True)
+    assert m.converged and m.iterations > 2
