@@ -259,7 +259,12 @@ def _projected_cg(
     Armijo backtracking keeps the energy decreasing on the concave adhesive part.  The
     pressure is updated along each step from the direction's pressure (in single precision
     with ``single_precision_directions``) and recomputed from U every 50 iterations and, in
-    single precision, before a minimum is accepted."""
+    single precision, before a minimum is accepted.  A minimisation that has stagnated at
+    round-off (40 halvings for a decrease, or a projected gradient that has not halved in
+    ``FLAT_STEPS`` steps while the energy fell by less than ``FLAT_ENERGY`` of itself) goes on
+    in double precision if its directions were in single precision, and otherwise stops with
+    the message "stagnated at round-off in the energy", converged only if the projected
+    gradient is below ``gtol``."""
     L = _length_scale(prob, d, adhesive)
     # the face lies in the raster's corner of the padded grid: its cells are read and written
     # there (``face_block``), a quarter of the grid
