@@ -282,8 +282,8 @@ def _projected_cg(
     potential = prob.potential if adhesive else None
     most_in_contact = 0
     window_steps, window_pg, window_E = 0, math.inf, E  # the stagnation window (below)
-    # a flag, not ``direction_pressure_of is prob.pressure``: each access to a method makes a
-    # new bound-method object, so that identity never held and a second stall never ended
+    # the directions' pressures in double precision: from the start, or after a stall in
+    # single precision (one flag decides both which transform runs and whether a stall ends)
     double_directions = not single_precision_directions
     # work arrays of the padded grid, reused across the iterations: a fresh array of a few
     # megabytes is fresh pages from the system, whose faults cost system time.  The products
@@ -293,13 +293,7 @@ def _projected_cg(
     preconditioned_buffer = np.empty(prob.padded)
     spare_U, spare_P, difference = np.empty(prob.padded), np.empty(prob.padded), np.empty(prob.padded)
     gradient_buffers = (np.empty(prob.padded), np.empty(prob.padded))
-    if single_precision_directions:
-        direction_pressure_buffer = np.empty(prob.padded)
-
-        def direction_pressure_of(direction):
-            return prob.pressure_single(direction, out=direction_pressure_buffer)
-    else:
-        direction_pressure_of = prob.pressure
+    direction_pressure_buffer = None if double_directions else np.empty(prob.padded)
     updated = False  # P, E and G carry incremental updates since they were last computed from U
 
     def free_gradient(G, at_wall_face):
@@ -347,7 +341,10 @@ def _projected_cg(
             direction = -preconditioned
             gs = float(np.vdot(Gf, direction))
         fixed_previous, zg_previous, Gf_previous = fixed, zg, Gf
-        direction_pressure = direction_pressure_of(direction)
+        if double_directions:
+            direction_pressure = prob.pressure(direction)
+        else:
+            direction_pressure = prob.pressure_single(direction, out=direction_pressure_buffer)
         elastic_curvature = float(np.vdot(direction, direction_pressure))
         curvature = elastic_curvature
         if potential is not None and curvature_face is not None:
@@ -389,8 +386,9 @@ def _projected_cg(
         if window_steps == 0 or pg < 0.5 * window_pg:
             window_steps, window_pg, window_E = 0, pg, E
         window_steps += 1
-        flat = window_steps >= FLAT_STEPS and window_E - En <= FLAT_ENERGY * abs(En)
+        flat = False
         if window_steps >= FLAT_STEPS:
+            flat = window_E - En <= FLAT_ENERGY * abs(En)
             window_steps = 0
         stalled = halvings >= 40 or flat
         if stalled and (pg <= gtol or double_directions):
@@ -402,7 +400,6 @@ def _projected_cg(
             # the directions' single-precision pressures can stall the line search at their own
             # round-off while the double-precision gradient is still above gtol: go on in double
             # precision from a fresh evaluation (a stall there ends the minimisation as above)
-            direction_pressure_of = prob.pressure
             double_directions = True
             direction = None
             E, G, P, curvature_face = prob.energy_and_curvature(U, d, adhesive)
