@@ -69,9 +69,9 @@ def _pulling_step(monkeypatch, flat_steps, flat_energy, single_precision):
 def test_a_stall_in_double_precision_ends_the_minimisation(monkeypatch):
     """With a window that calls every step a stall, a single-precision minimisation goes on in
     double precision after the first and stops, reporting the stagnation and not converged,
-    at the second; a double-precision one stops at the first.  (A second stall was once
-    continued for ever: the double-precision mode was recognised by comparing bound methods,
-    which are new objects at each access.)  With the default window the same step converges."""
+    at the second (a mode that is not recognised as double precision continues every stall,
+    up to the iteration cap); a double-precision one stops at the first.  With the default
+    window the same step converges."""
     for single, most in ((True, 2), (False, 1)):
         m = _pulling_step(monkeypatch, 1, math.inf, single)
         assert m.message == "stagnated at round-off in the energy" and m.iterations <= most
