@@ -256,7 +256,9 @@ def _projected_cg(
     descent direction, and with ``restart_on_wall_change`` also whenever the set at the wall
     changes (as in Polonsky-Keer); otherwise the previous direction is kept, projected onto
     the new free set (Polak-Ribiere's beta, clipped at zero, from the projected gradients).
-    Armijo backtracking keeps the energy decreasing on the concave adhesive part.  The
+    Armijo backtracking keeps the energy decreasing on the concave adhesive part, judged on
+    the step's energy change summed from the cells' changes (:meth:`EnergyProblem.energy_change`),
+    not on the difference of two totals, whose round-off can exceed a late step's decrease.  The
     pressure is updated along each step from the direction's pressure (in single precision
     with ``single_precision_directions``) and recomputed from U every 50 iterations and, in
     single precision, before a minimum is accepted.  A minimisation that has stagnated at

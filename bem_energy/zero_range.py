@@ -341,8 +341,8 @@ def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callb
     )
     if k != 0:
         msgs.append(
-            f"graded body (k = {k:g}): the tail bracket starts at (1-k)/2 = {rates[0]:g}; it is checked on the "
-            "flat circle at k = 0.5 only (l_c/a = 0.08 ... 0.01: +4.2 % error, 9.4 % estimate; "
+            f"graded body (k = {k:g}): the tail bracket starts at (1-k)/2 = {rates[0]:g}; it is checked against "
+            "the closed form on the flat circle at k = 0.5 only (docs/accuracy.md, from "
             "benchmarks/study_graded_shape_ratio.py --zero-range), and a graded limit converges slowly"
         )
     if min(settings.ratios) > VALIDATED_FINEST_RATIO:
