@@ -361,8 +361,11 @@ def _projected_cg(
             Un = np.multiply(direction, alpha, out=spare_U)
             Un += U
             Un_face = prob.on_face(Un)
+            clipped = None
             if (Un_face < wall).any():
-                Un[corner][face_block] = np.maximum(Un_face, wall)
+                clipped = np.maximum(Un_face, wall)
+                Un[corner][face_block] = clipped
+                clipped -= Un_face  # the projection's move, on the face cells
                 Pn, Pn_updated = None, False
             else:
                 Pn = np.multiply(direction_pressure, alpha, out=spare_P)
@@ -373,13 +376,16 @@ def _projected_cg(
             # the step's change of the energy from the cells' changes, not En - E: the two sums
             # carry round-off (1e-11 of E on a 3200^2 grid) above the decrease of a step near the
             # minimum, where comparing them stalled the line search for hundreds of iterations
-            if Pn_updated:  # Un - U = alpha direction and Pn - P = alpha direction_pressure
+            # (EnergyProblem.energy_change, with the step's structure: the elastic change is
+            # 1/2 (Un - U).(Pn + P), and Un - U is alpha direction plus the projection's move)
+            if clipped is None:  # and Pn - P = alpha direction_pressure
                 change = alpha * (direction_load + 0.5 * alpha * elastic_curvature)
-                if phi is not None and phi_n is not None:
-                    change += float(np.sum(phi_n - phi))
-                change *= prob.cell
             else:
-                change = prob.energy_change(U, P, phi, Un, Pn, phi_n)
+                change = 0.5 * alpha * (direction_load + float(np.vdot(direction, Pn)))
+                change += 0.5 * float(np.dot(clipped, prob.on_face(Pn) + prob.on_face(P)))
+            if phi is not None and phi_n is not None:
+                change += float(np.sum(phi_n - phi))
+            change *= prob.cell
             if change <= 1e-4 * alpha * gs:
                 break
             if abs(change) <= 1e-12 * abs(E) and abs(float(np.vdot(Gn, direction))) <= 0.9 * abs(gs):

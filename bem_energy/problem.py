@@ -380,6 +380,8 @@ class EnergyProblem:
         than the decrease a converging step makes, and a line search that compares the two
         energies then stalls.  The elastic change is 1/2 (Un - U).(Pn + P) (C^-1 is symmetric)
         and the adhesive change the sum of phi_n - phi over the face: sums of the step's own size.
+        The projected CG's line search evaluates the same with its step's structure (Un - U is
+        the step along the search direction plus the wall's projection).
 
         Parameters
         ----------
