@@ -171,6 +171,8 @@ def zero_range_limit(name: str, k: float, ratios, cache: Path) -> dict:
         "fitted_rate": rate,
         "converged": all(x["converged"] for x in runs),
         "cpu_s": sum(x["cpu_s"] for x in runs),
+        # the ranges come from a cache and may be older than the revision assembling the table
+        "range_revisions": [x.get("revision") for x in runs],
     }
 
 
