@@ -233,9 +233,67 @@ def _largest_magnitude(A: np.ndarray) -> float:
 # ---------------------------------------------------------------------------
 
 
+def step_energy_change(
+    prob: EnergyProblem,
+    alpha: float,
+    direction: np.ndarray,
+    direction_load: float,
+    direction_curvature: float,
+    P: np.ndarray,
+    Pn: np.ndarray,
+    clipped: np.ndarray | None,
+    phi: np.ndarray | None,
+    phi_n: np.ndarray | None,
+) -> float:
+    """The energy change of a projected CG step, summed from the cells' changes.
+
+    Each total energy is a sum over the padded grid whose elastic and adhesive parts are several
+    times the energy and of opposite sign: its round-off can exceed the decrease of a step near
+    the minimum.  The elastic change is 1/2 (Un - U).(Pn + P) (C^-1 symmetric), with
+    Un - U = alpha direction plus the wall projection's move on the face; without a projection
+    Pn - P = alpha C^-1 direction, and the change is alpha (direction.P + alpha/2 direction.C^-1
+    direction).  The adhesive change is the sum of the cells' phi_n - phi.  All are sums of the
+    step's own size.
+
+    Parameters
+    ----------
+    prob : bem_energy.EnergyProblem
+        The discrete problem.
+    alpha : float
+        The step along ``direction``.
+    direction : numpy.ndarray
+        The search direction on the padded grid.
+    direction_load : float
+        direction . P.
+    direction_curvature : float
+        direction . C^-1 direction, as the pressure that formed Pn (used without a projection).
+    P, Pn : numpy.ndarray
+        The pressures before and after the step.
+    clipped : numpy.ndarray or None
+        The projection's move of the face cells (face order), None when no cell was projected
+        (then Pn = P + alpha C^-1 direction).
+    phi, phi_n : numpy.ndarray or None
+        The face cells' potential energies before and after (``EnergyProblem.energy_terms``);
+        None without the adhesive term.
+
+    Returns
+    -------
+    float
+        Pi(Un) - Pi(U), in physical units.
+    """
+    if clipped is None:
+        change = alpha * (direction_load + 0.5 * alpha * direction_curvature)
+    else:
+        change = 0.5 * alpha * (direction_load + float(np.vdot(direction, Pn)))
+        change += 0.5 * float(np.dot(clipped, prob.on_face(Pn) + prob.on_face(P)))
+    if phi is not None and phi_n is not None:
+        change += float(np.sum(phi_n - phi))
+    return prob.cell * change
+
+
 #: the projected CG is stalled when its projected gradient has not halved in FLAT_STEPS steps
-#: and the energy fell by less than FLAT_ENERGY of itself over them: round-off, for a sum over
-#: millions of cells (a converging iteration halves its gradient in a few steps)
+#: and the energy fell by less than FLAT_ENERGY of itself over them (summed step by step,
+#: :func:`step_energy_change`): a converging iteration halves its gradient in a few steps
 FLAT_STEPS, FLAT_ENERGY = 20, 1e-10
 
 
@@ -257,16 +315,16 @@ def _projected_cg(
     changes (as in Polonsky-Keer); otherwise the previous direction is kept, projected onto
     the new free set (Polak-Ribiere's beta, clipped at zero, from the projected gradients).
     Armijo backtracking keeps the energy decreasing on the concave adhesive part, judged on
-    the step's energy change summed from the cells' changes (:meth:`EnergyProblem.energy_change`),
+    the step's energy change summed from the cells' changes (:func:`step_energy_change`),
     not on the difference of two totals, whose round-off can exceed a late step's decrease.  The
     pressure is updated along each step from the direction's pressure (in single precision
     with ``single_precision_directions``) and recomputed from U every 50 iterations and, in
-    single precision, before a minimum is accepted.  A minimisation that has stagnated at
-    round-off (40 halvings for a decrease, or a projected gradient that has not halved in
-    ``FLAT_STEPS`` steps while the energy fell by less than ``FLAT_ENERGY`` of itself) goes on
-    in double precision if its directions were in single precision, and otherwise stops with
-    the message "stagnated at round-off in the energy", converged only if the projected
-    gradient is below ``gtol``."""
+    single precision, before a minimum is accepted.  A minimisation that has stagnated (40
+    halvings for a decrease, or a projected gradient that has not halved in ``FLAT_STEPS``
+    steps while the energy fell by less than ``FLAT_ENERGY`` of itself) goes on in double
+    precision if its directions were in single precision, and otherwise stops with a message
+    that says which ("stagnated at round-off in the energy" or "stagnated: ..."), converged
+    only if the projected gradient is below ``gtol``."""
     L = _length_scale(prob, d, adhesive)
     # the face lies in the raster's corner of the padded grid: its cells are read and written
     # there (``face_block``), a quarter of the grid
@@ -373,24 +431,18 @@ def _projected_cg(
                 Pn_updated = True
             En, Gn, Pn, curvature_face_n, phi_n = prob.energy_terms(Un, d, adhesive, Pn)
             evals += 1
-            # the step's change of the energy from the cells' changes, not En - E: the two sums
-            # carry round-off (1e-11 of E on a 3200^2 grid) above the decrease of a step near the
+            # the step's change from the cells' changes, not En - E: the two totals carry
+            # round-off (about 1e-11 of E on a 3200^2 grid) above the decrease of a step near the
             # minimum, where comparing them stalled the line search for hundreds of iterations
-            # (EnergyProblem.energy_change, with the step's structure: the elastic change is
-            # 1/2 (Un - U).(Pn + P), and Un - U is alpha direction plus the projection's move)
-            if clipped is None:  # and Pn - P = alpha direction_pressure
-                change = alpha * (direction_load + 0.5 * alpha * elastic_curvature)
-            else:
-                change = 0.5 * alpha * (direction_load + float(np.vdot(direction, Pn)))
-                change += 0.5 * float(np.dot(clipped, prob.on_face(Pn) + prob.on_face(P)))
-            if phi is not None and phi_n is not None:
-                change += float(np.sum(phi_n - phi))
-            change *= prob.cell
+            change = step_energy_change(
+                prob, alpha, direction, direction_load, elastic_curvature, P, Pn, clipped, phi, phi_n
+            )
             if change <= 1e-4 * alpha * gs:
                 break
             if abs(change) <= 1e-12 * abs(E) and abs(float(np.vdot(Gn, direction))) <= 0.9 * abs(gs):
-                # the energy change is at round-off, where Armijo cannot decide; the slope
-                # along the direction still can: accept a step that flattens it (a Wolfe-type condition)
+                # a change below what the totals could resolve: accept a step that flattens the
+                # slope along the direction (a Wolfe-type condition), as the totals' comparison
+                # did; it may raise the energy by at most that much
                 break
             alpha *= 0.5
         else:
@@ -398,10 +450,8 @@ def _projected_cg(
         # a decrease found only 2^-40 along the model step is round-off in the energy: the
         # iteration has stagnated (l_c ~ Delta near a snap took 50 evaluations per step and
         # 150,000 in one minimisation before this stop).  So has one whose projected gradient
-        # has not halved in FLAT_STEPS steps while the energy fell by less than
-        # FLAT_ENERGY of itself (a graded edge at 800 elements per radius: the same gradient,
-        # to four digits, for hundreds of iterations of about 25 halvings each, in double
-        # precision too, the energy moving at 1e-13 of itself)
+        # has not halved in FLAT_STEPS steps while the energy fell by less than FLAT_ENERGY of
+        # itself: a guard against progress too slow to reach gtol in any useful time
         if window_steps == 0 or pg < 0.5 * window_pg:
             window_steps, window_pg, window_fall = 0, pg, 0.0
         window_steps += 1
@@ -412,7 +462,13 @@ def _projected_cg(
             window_steps = 0
         stalled = halvings >= 40 or flat
         if stalled and (pg <= gtol or double_directions):
-            return Minimum(Un, Pn, En, it, evals, pg <= gtol, pg, "stagnated at round-off in the energy")
+            why = (
+                "stagnated at round-off in the energy"
+                if halvings >= 40
+                else f"stagnated: the energy fell by less than {FLAT_ENERGY:g} of itself in {FLAT_STEPS} steps "
+                "while the projected gradient did not halve"
+            )
+            return Minimum(Un, Pn, En, it, evals, pg <= gtol, pg, why)
         spare_U, spare_P = U, P
         U, P, E, G, curvature_face, phi = Un, Pn, En, Gn, curvature_face_n, phi_n
         updated = Pn_updated

@@ -331,8 +331,8 @@ class EnergyProblem:
     def energy_terms(self, U: np.ndarray, d: float, adhesive: bool, P: np.ndarray | None = None):
         """:meth:`energy_and_curvature` and the potential's energy phi(g) of each face cell.
 
-        The cells' potential energies let :meth:`energy_change` sum a step's change from the
-        cells' changes (see there).
+        The cells' potential energies let the projected CG sum a step's energy change from the
+        cells' changes (``bem_energy.minimisers.step_energy_change``).
 
         Parameters
         ----------
@@ -363,46 +363,6 @@ class EnergyProblem:
             self.crop(G)[self.face_block] += stress
         G *= self.cell  # in place: G is a fresh array
         return self.cell * E, G, P, curvature, phi
-
-    def energy_change(
-        self,
-        U: np.ndarray,
-        P: np.ndarray,
-        phi: np.ndarray | None,
-        Un: np.ndarray,
-        Pn: np.ndarray,
-        phi_n: np.ndarray | None,
-    ) -> float:
-        """Pi(Un) - Pi(U), summed from the cells' changes, not as the difference of two totals.
-
-        Each energy is a sum over millions of cells whose elastic and adhesive parts are several
-        times Pi and of opposite sign: its round-off (about 1e-11 of Pi on a 3200^2 grid) is larger
-        than the decrease a converging step makes, and a line search that compares the two
-        energies then stalls.  The elastic change is 1/2 (Un - U).(Pn + P) (C^-1 is symmetric)
-        and the adhesive change the sum of phi_n - phi over the face: sums of the step's own size.
-        The projected CG's line search evaluates the same with its step's structure (Un - U is
-        the step along the search direction plus the wall's projection).
-
-        Parameters
-        ----------
-        U, P : numpy.ndarray
-            A state and its pressures C^-1 U, on the padded grid.
-        phi : numpy.ndarray or None
-            Its cells' potential energies (:meth:`energy_terms`); None without the adhesive term.
-        Un, Pn : numpy.ndarray
-            Another state and its pressures.
-        phi_n : numpy.ndarray or None
-            Its cells' potential energies.
-
-        Returns
-        -------
-        float
-            The change of Pi, in physical units.
-        """
-        change = 0.5 * float(np.vdot(Un - U, Pn + P))
-        if phi is not None and phi_n is not None:
-            change += float(np.sum(phi_n - phi))
-        return self.cell * change
 
     def force(self, P: np.ndarray) -> float:
         """The normal force on the punch: cell times the sum of P over the face.
