@@ -20,7 +20,7 @@ from threadpoolctl import ThreadpoolController
 
 from .problem import EnergyProblem
 
-__all__ = ["Minimum", "minimise", "projected_gradient", "face_matrix"]
+__all__ = ["Minimum", "minimise", "projected_gradient", "face_matrix", "step_energy_change"]
 
 log = logging.getLogger("bem_energy")
 
