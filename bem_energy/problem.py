@@ -297,11 +297,14 @@ class EnergyProblem:
         P : numpy.ndarray
             The pressures C^-1 U.
         """
-        E, G, P, _ = self.energy_and_curvature(U, d, adhesive, P)
+        E, G, P, _, _ = self.energy_terms(U, d, adhesive, P)
         return E, G, P
 
-    def energy_and_curvature(self, U: np.ndarray, d: float, adhesive: bool, P: np.ndarray | None = None):
-        """:meth:`energy` and the potential's curvature phi''(g) on the face, from one exponential.
+    def energy_terms(self, U: np.ndarray, d: float, adhesive: bool, P: np.ndarray | None = None):
+        """:meth:`energy` with phi''(g) and phi(g) of each face cell, from one exponential.
+
+        The projected CG's step model needs the curvature phi'', and it sums a step's energy
+        change from the cells' phi (``bem_energy.minimisers.step_energy_change``).
 
         Parameters
         ----------
@@ -316,39 +319,10 @@ class EnergyProblem:
 
         Returns
         -------
-        energy : float
-            Pi, as for :meth:`energy`.
-        gradient : numpy.ndarray
-            dPi/dU on the padded grid.
-        P : numpy.ndarray
-            The pressures C^-1 U.
+        energy, gradient, P
+            As for :meth:`energy`.
         curvature : numpy.ndarray or None
             phi'' at the face cells' gaps (1-D, face order); None without the adhesive term.
-        """
-        E, G, P, curvature, _ = self.energy_terms(U, d, adhesive, P)
-        return E, G, P, curvature
-
-    def energy_terms(self, U: np.ndarray, d: float, adhesive: bool, P: np.ndarray | None = None):
-        """:meth:`energy_and_curvature` and the potential's energy phi(g) of each face cell.
-
-        The cells' potential energies let the projected CG sum a step's energy change from the
-        cells' changes (``bem_energy.minimisers.step_energy_change``).
-
-        Parameters
-        ----------
-        U : numpy.ndarray
-            Surface displacements on the padded grid.
-        d : float
-            Approach of the punch.
-        adhesive : bool
-            Whether the adhesive potential is switched on.
-        P : numpy.ndarray or None, optional
-            C^-1 U when already known (saves two FFTs).
-
-        Returns
-        -------
-        energy, gradient, P, curvature
-            As for :meth:`energy_and_curvature`.
         phi : numpy.ndarray or None
             phi(g) of the face cells (1-D, face order); None without the adhesive term.
         """

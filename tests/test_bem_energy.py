@@ -103,16 +103,17 @@ def test_potential_terms_from_one_exponential_equal_the_separate_ones(kind):
     assert stress == pytest.approx((pot.energy(g + h) - pot.energy(g - h)) / (2 * h), rel=1e-8, abs=1e-9 * W / rho)
     dstress = (pot.stress(g + h) - pot.stress(g - h)) / (2 * h)
     assert curvature == pytest.approx(dstress, rel=1e-8, abs=1e-9 * W / rho**2)
-    # the problem's energy with the curvature is the energy, and that curvature at the face's gaps
+    # the problem's energy terms: the energy, and the curvature and energy at the face's gaps
     sc = circle(range_=rho, potential=kind)
     prob = be.build_problem(sc, 1 / 8, pot)
     U = np.random.default_rng(3).uniform(0, rho, prob.padded) * prob.face
     d = -0.5 * rho
     E, G, P = prob.energy(U, d, True)
-    E2, G2, P2, C2 = prob.energy_and_curvature(U, d, True)
+    E2, G2, P2, C2, phi = prob.energy_terms(U, d, True)
     assert E2 == E and np.array_equal(G2, G) and np.array_equal(P2, P)
     assert np.array_equal(C2, pot.curvature(prob.gap(U, d)))
-    assert prob.energy_and_curvature(U, d, False)[3] is None
+    assert np.array_equal(phi, pot.energy(prob.gap(U, d)))
+    assert prob.energy_terms(U, d, False)[3] is None
 
 
 def test_no_adhesion_stiffness_equals_griffith_on_the_same_grid():
