@@ -433,7 +433,7 @@ def _projected_cg(
             evals += 1
             # the step's change from the cells' changes, not En - E: the two totals carry
             # round-off (about 1e-11 of E on a 3200^2 grid) above the decrease of a step near the
-            # minimum, where comparing them stalled the line search for hundreds of iterations
+            # minimum, where comparing them would let round-off decide which steps pass
             change = step_energy_change(
                 prob, alpha, direction, direction_load, elastic_curvature, P, Pn, clipped, phi, phi_n
             )

@@ -3,9 +3,9 @@ changes (``bem_energy.minimisers.step_energy_change``), not by the difference of
 
 Each total is a sum over the padded grid whose elastic and adhesive parts are several times the
 energy and of opposite sign; on a graded circle at 800 elements per radius (3200^2 padded) its
-round-off was about 1e-11 of the energy, above the decrease of a step near the minimum, and the
-line search halved every step 20-30 times until round-off let one pass: the minimisation
-stagnated with its projected gradient at ten times the tolerance.
+round-off is about 1e-11 of the energy, above the decrease of a step near the minimum, so a
+line search comparing totals lets round-off decide which steps pass and the minimisation
+stagnates with its projected gradient above the tolerance.
 """
 
 from __future__ import annotations
@@ -122,7 +122,7 @@ def test_round_off_in_the_total_energy_does_not_reach_the_line_search(monkeypatc
     """A pulling step of the circle at l_c = 0.08 a takes the same iterates, bit for bit, when
     every total energy carries a random error of 1e-10 of itself (ten times the round-off
     measured on the 3200^2 grid): no decision reads the totals but for a scale.  A line search
-    on En - E stops there with "line search failed" (checked when this test was written)."""
+    on En - E stops there with "line search failed"."""
     prob, m = attached
     clean = mins.minimise(prob, m.U, D, True, method="pk", gtol=1e-8, single_precision_directions=single_precision)
     assert clean.converged
