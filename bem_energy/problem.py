@@ -26,7 +26,7 @@ from halfspace.kernel import graded_influence, love_influence
 
 # pocketfft's own entry points write into a given array (``out``), which scipy.fft's do not;
 # None (scipy.fft's allocating calls) where they are missing or differ from scipy.fft
-from halfspace.pocketfft import POCKETFFT as _pocketfft
+from halfspace.pocketfft import POCKETFFT as _pocketfft, norm_factor
 
 from .potentials import Potential, process_zone_exponent, process_zone_length, process_zone_modulus
 
@@ -110,8 +110,20 @@ class EnergyProblem:
             out = self._buffer("spectrum_single", (Mx, My // 2 + 1), np.complex64)
         else:
             out = self._buffer("spectrum", (Mx, My // 2 + 1), np.complex128)
-        # scipy.fft.rfft2's own call, into ``out``: the same numbers
-        return _pocketfft.r2c(U, (0, 1), True, 0, out, 1)
+        # rfft2 one axis at a time, the second in place: pocketfft's own order of the 2-D
+        # transform (the same numbers, halfspace.pocketfft), without its temporary arrays
+        _pocketfft.r2c(U, (1,), True, 0, out, 1)
+        return _pocketfft.c2c(out, (0,), True, 0, out, 1)
+
+    def _inverse(self, F: np.ndarray, out: np.ndarray) -> np.ndarray:
+        """irfft2 of the half spectrum ``F`` (overwritten) into ``out`` of F's precision."""
+        # pocketfft's own order of the 2-D inverse, the normalisation last (its factor,
+        # halfspace.pocketfft.norm_factor): the same numbers as scipy.fft.irfft2, without the
+        # temporary copy of the spectrum the 2-D call makes
+        _pocketfft.c2c(F, (0,), False, 0, F, 1)
+        _pocketfft.c2r(F, (1,), self.padded[1], False, 0, out, 1)
+        out *= norm_factor(self.padded[0] * self.padded[1], out.dtype)
+        return out
 
     def _single_precision(self, A: np.ndarray, symbol: np.ndarray, divide: bool, out: np.ndarray | None) -> np.ndarray:
         """The product (``divide``: quotient) of ``A``'s spectrum with ``symbol``, transformed
@@ -131,8 +143,7 @@ class EnergyProblem:
                 F /= symbol
             else:
                 F *= symbol
-            # scipy.fft.irfft2's own call (backward normalisation), into ``single``
-            result = _pocketfft.c2r(F, (0, 1), self.padded[1], False, 2, single, 1)
+            result = self._inverse(F, single)
         if out is None:
             return result.astype(np.float64)
         np.copyto(out, result)
@@ -171,9 +182,13 @@ class EnergyProblem:
             The pressures on the padded grid.
         """
         # in place, and the transform may overwrite its input: no complex temporaries (the same numbers)
-        F = sfft.rfft2(U) if _pocketfft is None else self._spectrum(U)
+        if _pocketfft is None:  # pragma: no cover - see the import
+            F = sfft.rfft2(U)
+            F /= self.symbol
+            return sfft.irfft2(F, s=self.padded, overwrite_x=True)
+        F = self._spectrum(U)
         F /= self.symbol
-        return sfft.irfft2(F, s=self.padded, overwrite_x=True)
+        return self._inverse(F, np.empty(self.padded))
 
     def displacement(self, P: np.ndarray) -> np.ndarray:
         """U = C P on the padded grid.
