@@ -81,15 +81,24 @@ class EnergyProblem:
     modulus: float  # E* (E_k = 1 / (pi A_k) for a graded body): sets the process zone
     self_compliance: float  # C_00, the kernel's self coefficient: sets the minimisers' scales
     exponent: float = 0.0  # the grading exponent k (0: homogeneous)
-    #: the symbol in single precision, for :meth:`preconditioned`
-    symbol_single: np.ndarray = field(init=False, repr=False)
+    #: the factors that multiply a spectrum for C^-1 (double and single precision) and for C
+    #: (single precision), each with the inverse transform's 1/n folded in (:meth:`_transform`)
+    inverse_factor: np.ndarray = field(init=False, repr=False)
+    inverse_factor_single: np.ndarray = field(init=False, repr=False)
+    symbol_factor_single: np.ndarray = field(init=False, repr=False)
     #: the face's mask on the raster's corner of the padded grid (:meth:`on_face`)
     face_block: np.ndarray = field(init=False, repr=False)
-    #: per-thread transform buffers (:meth:`_single_precision`, :meth:`_spectrum`)
+    #: per-thread transform buffers (:meth:`_transform`, :meth:`_spectrum`)
     _scratch: threading.local = field(init=False, repr=False)
 
     def __post_init__(self):
-        object.__setattr__(self, "symbol_single", self.symbol.astype(np.float32))
+        # a product with a reciprocal, not a quotient: a complex division costs several
+        # multiplications, a sizeable part of a transform pair on the finest grids
+        scale = norm_factor(self.padded[0] * self.padded[1], np.float64)
+        inverse = scale / self.symbol
+        object.__setattr__(self, "inverse_factor", inverse)
+        object.__setattr__(self, "inverse_factor_single", inverse.astype(np.float32))
+        object.__setattr__(self, "symbol_factor_single", (scale * self.symbol).astype(np.float32))
         object.__setattr__(self, "face_block", self.crop(self.face).copy())
         object.__setattr__(self, "_scratch", threading.local())
 
@@ -115,35 +124,27 @@ class EnergyProblem:
         _pocketfft.r2c(U, (1,), True, 0, out, 1)
         return _pocketfft.c2c(out, (0,), True, 0, out, 1)
 
-    def _inverse(self, F: np.ndarray, out: np.ndarray) -> np.ndarray:
-        """irfft2 of the half spectrum ``F`` (overwritten) into ``out`` of F's precision."""
-        # pocketfft's own order of the 2-D inverse, the normalisation last (its factor,
-        # halfspace.pocketfft.norm_factor): the same numbers as scipy.fft.irfft2, without the
-        # temporary copy of the spectrum the 2-D call makes
-        _pocketfft.c2c(F, (0,), False, 0, F, 1)
-        _pocketfft.c2r(F, (1,), self.padded[1], False, 0, out, 1)
-        out *= norm_factor(self.padded[0] * self.padded[1], out.dtype)
-        return out
-
-    def _single_precision(self, A: np.ndarray, symbol: np.ndarray, divide: bool, out: np.ndarray | None) -> np.ndarray:
-        """The product (``divide``: quotient) of ``A``'s spectrum with ``symbol``, transformed
-        back, in single precision; returned in double precision (in ``out`` if given)."""
+    def _transform(self, A: np.ndarray, factor: np.ndarray, out: np.ndarray) -> np.ndarray:
+        """irfft2(rfft2(A) * factor) into ``out``, in the precision of ``A`` and ``out``, with
+        ``factor`` carrying the inverse's 1/n (``inverse_factor`` and the like)."""
         if _pocketfft is None:  # pragma: no cover - see the import
-            F = sfft.rfft2(A.astype(np.float32))
-            if divide:
-                F /= symbol
-            else:
-                F *= symbol
-            result = sfft.irfft2(F, s=self.padded, overwrite_x=True)
-        else:
-            single = self._buffer("real_single", self.padded, np.float32)
-            np.copyto(single, A, casting="same_kind")
-            F = self._spectrum(single)
-            if divide:
-                F /= symbol
-            else:
-                F *= symbol
-            result = self._inverse(F, single)
+            F = sfft.rfft2(A)
+            F *= factor
+            np.copyto(out, sfft.irfft2(F, s=self.padded, norm="forward", overwrite_x=True))
+            return out
+        F = self._spectrum(A)
+        F *= factor
+        # the inverse one axis at a time (pocketfft's order), unnormalised: the 2-D call would
+        # copy the spectrum first
+        _pocketfft.c2c(F, (0,), False, 0, F, 1)
+        return _pocketfft.c2r(F, (1,), self.padded[1], False, 0, out, 1)
+
+    def _single_precision(self, A: np.ndarray, factor: np.ndarray, out: np.ndarray | None) -> np.ndarray:
+        """:meth:`_transform` in single precision; returned in double precision (in ``out`` if
+        given)."""
+        single = self._buffer("real_single", self.padded, np.float32)
+        np.copyto(single, A, casting="same_kind")
+        result = self._transform(single, factor, single)
         if out is None:
             return result.astype(np.float64)
         np.copyto(out, result)
@@ -182,13 +183,7 @@ class EnergyProblem:
             The pressures on the padded grid.
         """
         # in place, and the transform may overwrite its input: no complex temporaries (the same numbers)
-        if _pocketfft is None:  # pragma: no cover - see the import
-            F = sfft.rfft2(U)
-            F /= self.symbol
-            return sfft.irfft2(F, s=self.padded, overwrite_x=True)
-        F = self._spectrum(U)
-        F /= self.symbol
-        return self._inverse(F, np.empty(self.padded))
+        return self._transform(U, self.inverse_factor, np.empty(self.padded))
 
     def displacement(self, P: np.ndarray) -> np.ndarray:
         """U = C P on the padded grid.
@@ -227,7 +222,7 @@ class EnergyProblem:
         numpy.ndarray
             C^-1 U, float64, on the padded grid (``out`` when given).
         """
-        return self._single_precision(U, self.symbol_single, True, out)
+        return self._single_precision(U, self.inverse_factor_single, out)
 
     def preconditioned(self, G: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
         """C G in single precision (returned in double): the projected CG's preconditioner.
@@ -249,7 +244,7 @@ class EnergyProblem:
         numpy.ndarray
             C G, float64, on the padded grid (``out`` when given).
         """
-        return self._single_precision(G, self.symbol_single, False, out)
+        return self._single_precision(G, self.symbol_factor_single, out)
 
     def on_face(self, A: np.ndarray) -> np.ndarray:
         """The face cells' entries of a padded-grid array, 1-D in the order of ``A[face]``.
