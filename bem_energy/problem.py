@@ -339,13 +339,13 @@ class EnergyProblem:
         if P is None:
             P = self.pressure(U)
         E = 0.5 * float(np.vdot(U, P))
-        G = P.copy()
+        G = np.multiply(P, self.cell)
         curvature = phi = None
         if adhesive and self.potential is not None:
             phi, stress, curvature = self.potential.evaluate(self.gap(U, d))
             E += float(np.sum(phi))
-            self.crop(G)[self.face_block] += stress
-        G *= self.cell  # in place: G is a fresh array
+            # (P + stress) cell on the face: one pass over the padded grid, not a copy and a scaling
+            self.crop(G)[self.face_block] = (self.on_face(P) + stress) * self.cell
         return self.cell * E, G, P, curvature, phi
 
     def force(self, P: np.ndarray) -> float:
