@@ -145,6 +145,7 @@ def pull(
                     tolerance=snap_tolerance,
                     locate_detachment=eq.settings.locate_detachment,
                     force_tolerance=eq.settings.peak_tolerance,
+                    previous=None if U_prev is None or d_prev is None else (d_prev, U_prev),
                 )
                 out.snap_off = snap
                 d_next, m_new = snap.detached_approach, snap.detached_state

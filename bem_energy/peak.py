@@ -124,10 +124,15 @@ def locate_snap_off(
     tolerance: float,
     locate_detachment: bool = True,
     force_tolerance: float | None = None,
+    previous: tuple[float, np.ndarray] | None = None,
 ) -> SnapOff:
     """Bisect between the attached state at ``d_att`` and the detached one at ``d_det`` until
     they are ``tolerance`` apart, every trial starting from the last attached state (a trial
-    started from a detached one stays detached); attached trials join the loading path.
+    started from a detached one stays detached), extrapolated along the secant from the
+    attached state before it (``previous``, (d, U); the continuation's own predictor) when one
+    is known: near the snap-off a trial's iterations go into relaxing the peeling front, and a
+    start on the branch's tangent leaves less of it to relax.  Attached trials join the
+    loading path.
     Without ``locate_detachment`` the bisection stops as soon as attached states on the path
     bracket a smooth maximum of the tension, which then no longer depends on the snap-off.
 
@@ -158,8 +163,12 @@ def locate_snap_off(
                 reach = CLOSING * margin / slope  # slope > 0 here: a zero slope has stopped
                 if reach >= (d_att - d_det) / CLOSEST:
                     d_mid = max(d_mid, d_att - reach)
-        m_mid = eq.pulling_trial(m_att.U, d_mid, adhesive)
+        start = m_att.U
+        if previous is not None and previous[0] != d_att:
+            start = m_att.U + (m_att.U - previous[1]) * ((d_mid - d_att) / (d_att - previous[0]))
+        m_mid = eq.pulling_trial(start, d_mid, adhesive)
         if eq.attached(m_mid, d_mid, adhesive):
+            previous = (d_att, m_att.U)
             d_att, m_att = d_mid, m_mid
             path.record(d_mid, m_mid)
             fold_points.append((d_mid, eq.force(m_mid)))

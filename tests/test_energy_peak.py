@@ -228,3 +228,58 @@ def test_brent_stops_at_the_force_tolerance_with_fewer_trials():
         assert 1.0 - 4 / 9 * ftol <= p.force <= 1.0 + 1e-12
         counts.append(len(branch.trials) - n_path)
     assert counts[1] < counts[0]
+
+
+class LinearBranch(Branch):
+    """A branch whose state is U = (d, 2 d): the secant through two attached states predicts
+    every other state exactly; records each trial's warm start."""
+
+    def __init__(self, F, d_fold):
+        super().__init__(F, d_fold)
+        self.starts: list[tuple[float, np.ndarray]] = []
+
+    def state(self, d):
+        m = super().state(d)
+        return FakeMinimum(np.array([d, 2.0 * d]), m.force, m.attached)
+
+    def pulling_trial(self, U0, d, adhesive):
+        self.starts.append((d, np.array(U0, float)))
+        return super().pulling_trial(U0, d, adhesive)
+
+
+def test_snap_off_trials_start_from_the_secant_through_the_last_two_attached_states():
+    """Each trial of the search starts where the line through the last two attached states
+    puts it (as the continuation's steps do), so on a branch linear in d it starts on the
+    state itself; without the previous state (the first step) it starts from the last one."""
+    branch = LinearBranch(rising, FOLD)
+    path = LoadingPath(branch)
+    d_prev, d_att, d_det = FOLD + 2 * STEP, FOLD + STEP, FOLD
+    path.record(d_prev, branch.state(d_prev))
+    path.record(d_att, branch.state(d_att))
+    snap = peak.locate_snap_off(
+        branch,
+        path,
+        d_att,
+        branch.state(d_att),
+        d_det - 0.5 * STEP,
+        branch.state(d_det - 0.5 * STEP),
+        True,
+        tolerance=TOL,
+        previous=(d_prev, branch.state(d_prev).U),
+    )
+    assert len(branch.starts) >= 5 and snap.attached_approach - snap.detached_approach <= TOL
+    for d, start in branch.starts:
+        assert start == pytest.approx([d, 2.0 * d], rel=1e-12, abs=1e-12)
+    branch.starts.clear()
+    peak.locate_snap_off(
+        branch,
+        path,
+        d_att,
+        branch.state(d_att),
+        d_det - 0.5 * STEP,
+        branch.state(d_det - 0.5 * STEP),
+        True,
+        tolerance=TOL,
+    )
+    d_first, start = branch.starts[0]
+    assert np.array_equal(start, [d_att, 2.0 * d_att])
