@@ -318,8 +318,9 @@ def _projected_cg(
     the step's energy change summed from the cells' changes (:func:`step_energy_change`),
     not on the difference of two totals, whose round-off can exceed a late step's decrease.  The
     pressure is updated along each step from the direction's pressure (in single precision
-    with ``single_precision_directions``) and recomputed from U every 50 iterations and, in
-    single precision, before a minimum is accepted.  A minimisation that has stagnated (40
+    with ``single_precision_directions``, and so is a projected step's, plus the pressure of
+    the projection's move) and recomputed from U every 50 iterations and, in single
+    precision, before a minimum is accepted.  A minimisation that has stagnated (40
     halvings for a decrease, or a projected gradient that has not halved in ``FLAT_STEPS``
     steps while the energy fell by less than ``FLAT_ENERGY`` of itself) goes on in double
     precision if its directions were in single precision, and otherwise stops with a message
@@ -354,6 +355,9 @@ def _projected_cg(
     spare_U, spare_P, difference = np.empty(prob.padded), np.empty(prob.padded), np.empty(prob.padded)
     gradient_buffers = (np.empty(prob.padded), np.empty(prob.padded))
     direction_pressure_buffer = None if double_directions else np.empty(prob.padded)
+    # a projection's move (zero off the face, where it is never written) and its pressure
+    move = None if double_directions else np.zeros(prob.padded)
+    move_pressure = None if double_directions else np.empty(prob.padded)
     updated = False  # P, E and G carry incremental updates since they were last computed from U
 
     def free_gradient(G, at_wall_face):
@@ -424,7 +428,18 @@ def _projected_cg(
                 clipped = np.maximum(Un_face, wall)
                 Un[corner][face_block] = clipped
                 clipped -= Un_face  # the projection's move, on the face cells
-                Pn, Pn_updated = None, False
+                if double_directions or move is None:
+                    Pn, Pn_updated = None, False
+                else:
+                    # the projection moves a few cells onto the wall: their pressure from a
+                    # single-precision transform, added to the step's like a direction's (one
+                    # cheaper transform than a double-precision P, and round-off relative to
+                    # the step rather than to P)
+                    move[corner][face_block] = clipped
+                    Pn = np.multiply(direction_pressure, alpha, out=spare_P)
+                    Pn += P
+                    Pn += prob.pressure_single(move, out=move_pressure)
+                    Pn_updated = True
             else:
                 Pn = np.multiply(direction_pressure, alpha, out=spare_P)
                 Pn += P
