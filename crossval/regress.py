@@ -26,7 +26,11 @@ QUANTITIES = ("pulloff_force", "pulloff_approach", "stiffness")
 #: element per process zone; FEM: grading 2)
 CASES = {m.name: m.sweeps.regression for m in METHODS.values()}
 #: the same code reproduces its numbers to round-off; 1e-7 leaves room for other BLAS/FFT builds
+#: in the direct solvers.  The energy BEM's minimisers stop at a gradient tolerance, so a change
+#: of round-off alone (its transforms' rounding) moves its values by up to 2e-7 (measured over
+#: the suite); its cases carry 1e-6
 RTOL = 1e-7
+RTOL_BY_METHOD = {"bem_energy": 1e-6}
 
 
 @dataclass(frozen=True)
@@ -86,7 +90,8 @@ def regress(*, update: bool = False, path: Path | None = None, workers: int = 1,
     ----------
     update : bool, optional
         Rewrite ``path`` with the current values, the package version and a relative tolerance
-        of 1e-7 per case instead of comparing (the file is replaced whole, so an interrupted run
+        per case (:data:`RTOL`, or the method's in :data:`RTOL_BY_METHOD`) instead of
+        comparing (the file is replaced whole, so an interrupted run
         leaves the previous one).
     path : pathlib.Path, optional
         The reference file; None (default) for the one stored in the package
@@ -120,7 +125,7 @@ def regress(*, update: bool = False, path: Path | None = None, workers: int = 1,
             "method": j.method,
             "resolution": j.resolution,
             "values": {q: getattr(r, q) for q in QUANTITIES},
-            "rtol": RTOL,
+            "rtol": RTOL_BY_METHOD.get(j.method, RTOL),
         }
         for j, r in zip(jobs, results, strict=True)
     ]

@@ -24,9 +24,10 @@ log = logging.getLogger("halfspace")
 def norm_factor(n: int, dtype: Any) -> Any:
     """The factor 1/n of an inverse transform of n points, rounded as pocketfft rounds it.
 
-    pocketfft computes 1/n in long double and rounds it to the transform's precision; a
-    caller that runs an inverse unnormalised and scales it afterwards by this factor gets
-    scipy.fft's numbers bit for bit (checked by :func:`same_as_scipy_fft`).
+    pocketfft computes 1/n in long double and rounds it to the transform's precision, so an
+    inverse run unnormalised and scaled afterwards by this factor is scipy.fft's, bit for bit
+    (:func:`same_as_scipy_fft` checks that the unnormalised inverse one axis at a time
+    behaves so before the in-place path is used).
 
     Parameters
     ----------

@@ -230,9 +230,9 @@ def test_brent_stops_at_the_force_tolerance_with_fewer_trials():
     assert counts[1] < counts[0]
 
 
-class LinearBranch(Branch):
-    """A branch whose state is U = (d, 2 d): the secant through two attached states predicts
-    every other state exactly; records each trial's warm start."""
+class CurvedBranch(Branch):
+    """A branch whose state is U = (d, d^2): a secant predicts a state only approximately, and
+    which two states it goes through shows in the prediction; records each trial's warm start."""
 
     def __init__(self, F, d_fold):
         super().__init__(F, d_fold)
@@ -240,7 +240,7 @@ class LinearBranch(Branch):
 
     def state(self, d):
         m = super().state(d)
-        return FakeMinimum(np.array([d, 2.0 * d]), m.force, m.attached)
+        return FakeMinimum(np.array([d, d * d]), m.force, m.attached)
 
     def pulling_trial(self, U0, d, adhesive):
         self.starts.append((d, np.array(U0, float)))
@@ -249,11 +249,11 @@ class LinearBranch(Branch):
 
 def test_snap_off_trials_start_from_the_secant_through_the_last_two_attached_states():
     """Each trial of the search starts where the line through the last two attached states
-    puts it (as the continuation's steps do), so on a branch linear in d it starts on the
-    state itself; without the previous state (the first step) it starts from the last one."""
-    branch = LinearBranch(rising, FOLD)
+    puts it (as the continuation's steps do); without the state before the bracket (the
+    first step of a pull) the first trial starts from the last attached state."""
+    branch = CurvedBranch(rising, FOLD)
     path = LoadingPath(branch)
-    d_prev, d_att, d_det = FOLD + 2 * STEP, FOLD + STEP, FOLD
+    d_prev, d_att, d_det = FOLD + 2 * STEP, FOLD + STEP, FOLD - 0.5 * STEP
     path.record(d_prev, branch.state(d_prev))
     path.record(d_att, branch.state(d_att))
     snap = peak.locate_snap_off(
@@ -261,25 +261,22 @@ def test_snap_off_trials_start_from_the_secant_through_the_last_two_attached_sta
         path,
         d_att,
         branch.state(d_att),
-        d_det - 0.5 * STEP,
-        branch.state(d_det - 0.5 * STEP),
+        d_det,
+        branch.state(d_det),
         True,
         tolerance=TOL,
         previous=(d_prev, branch.state(d_prev).U),
     )
-    assert len(branch.starts) >= 5 and snap.attached_approach - snap.detached_approach <= TOL
+    assert snap.attached_approach - snap.detached_approach <= TOL
+    # replay the search: the attached states in the order it found them
+    attached = [d_prev, d_att]
     for d, start in branch.starts:
-        assert start == pytest.approx([d, 2.0 * d], rel=1e-12, abs=1e-12)
+        d0, d1 = attached[-2], attached[-1]
+        U0, U1 = branch.state(d0).U, branch.state(d1).U
+        assert start == pytest.approx(U1 + (U1 - U0) * ((d - d1) / (d1 - d0)), rel=1e-12, abs=1e-15)
+        if d >= FOLD:
+            attached.append(d)
+    assert len(attached) >= 5  # the secant moved with the bracket several times
     branch.starts.clear()
-    peak.locate_snap_off(
-        branch,
-        path,
-        d_att,
-        branch.state(d_att),
-        d_det - 0.5 * STEP,
-        branch.state(d_det - 0.5 * STEP),
-        True,
-        tolerance=TOL,
-    )
-    d_first, start = branch.starts[0]
-    assert np.array_equal(start, [d_att, 2.0 * d_att])
+    peak.locate_snap_off(branch, path, d_att, branch.state(d_att), d_det, branch.state(d_det), True, tolerance=TOL)
+    assert np.array_equal(branch.starts[0][1], branch.state(d_att).U)

@@ -284,9 +284,10 @@ def test_products_in_reused_buffers_are_the_dense_matrix_products_whatever_came_
 @pytest.mark.parametrize("shape", [(7, 9), (101, 97), (2310, 26), (810, 810)])
 @pytest.mark.parametrize("dtype", [np.float32, np.float64])
 def test_inverse_one_axis_at_a_time_then_scaled_is_irfft2_bit_for_bit(shape, dtype):
-    """An inverse run unnormalised one axis at a time and scaled afterwards by norm_factor (what
-    the energy BEM's transforms do, to skip the 2-D call's temporary spectrum) is scipy.fft's
-    irfft2, bit for bit, at sizes whose 1/n is not a power of two."""
+    """An inverse run unnormalised one axis at a time (as the energy BEM's transforms run it,
+    with the 1/n in their spectral factors) and scaled afterwards by norm_factor is scipy.fft's
+    irfft2, bit for bit, at sizes whose 1/n is not a power of two: the split inverse computes
+    what the 2-D call does."""
     from halfspace.pocketfft import POCKETFFT, norm_factor
 
     if POCKETFFT is None:
