@@ -429,7 +429,7 @@ def _projected_cg(
                 Un[corner][face_block] = clipped
                 clipped -= Un_face  # the projection's move, on the face cells
                 if double_directions or move is None:
-                    Pn, Pn_updated = None, False
+                    Pn = None
                 else:
                     # the projection moves a few cells onto the wall: their pressure from a
                     # single-precision transform, added to the step's like a direction's (one
@@ -439,11 +439,12 @@ def _projected_cg(
                     Pn = np.multiply(direction_pressure, alpha, out=spare_P)
                     Pn += P
                     Pn += prob.pressure_single(move, out=move_pressure)
-                    Pn_updated = True
             else:
                 Pn = np.multiply(direction_pressure, alpha, out=spare_P)
                 Pn += P
-                Pn_updated = True
+            # a pressure carried along the step, not computed from Un by energy_terms, is
+            # recomputed from U before a minimum is accepted
+            Pn_updated = Pn is not None
             En, Gn, Pn, curvature_face_n, phi_n = prob.energy_terms(Un, d, adhesive, Pn)
             evals += 1
             # the step's change from the cells' changes, not En - E: the two totals carry
