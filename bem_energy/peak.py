@@ -131,7 +131,7 @@ def locate_snap_off(
     started from a detached one stays detached), extrapolated along the secant from the
     attached state before it (``previous``, (d, U); the continuation's own predictor) when one
     is known: near the snap-off a trial's iterations go into relaxing the peeling front, and a
-    start on the branch's tangent leaves less of it to relax.  Attached trials join the
+    start on that secant leaves less of it to relax.  Attached trials join the
     loading path.
     Without ``locate_detachment`` the bisection stops as soon as attached states on the path
     bracket a smooth maximum of the tension, which then no longer depends on the snap-off.
