@@ -297,6 +297,44 @@ def step_energy_change(
 FLAT_STEPS, FLAT_ENERGY = 20, 1e-10
 
 
+class _DirectionArrays:
+    """The projected CG's search-direction arrays of the padded grid, allocated once per
+    minimisation: the free gradient (two, the previous one is needed for the conjugate
+    direction), its preconditioned image, their difference, the direction and its pressure.
+
+    With single-precision directions they are float32: the preconditioner and the direction's
+    pressure are single-precision transforms anyway, and besides those two transforms an
+    iteration streams these arrays through memory about a dozen times, each pass then moving
+    half the bytes.  The direction and its pressure are copied to double precision once per
+    iteration (:meth:`double`), for the step, its slope and its energy change, which stay in
+    double precision; the products of two single-precision arrays (``dot``, accumulated in
+    their precision) only weigh the conjugate directions."""
+
+    def __init__(self, shape: tuple[int, int], double: bool):
+        dtype = np.float64 if double else np.float32
+        self.gradients = (np.empty(shape, dtype), np.empty(shape, dtype))
+        self.preconditioned = np.empty(shape, dtype)
+        self.difference = np.empty(shape, dtype)
+        self.direction = np.empty(shape, dtype)
+        self.direction_pressure = None if double else np.empty(shape, dtype)
+        self.direction_double = None if double else np.empty(shape)
+        self.direction_pressure_double = None if double else np.empty(shape)
+
+    def double(self, A: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
+        """``A`` in double precision: itself, or copied into ``out`` (by default the direction's
+        double-precision array)."""
+        if A.dtype == np.float64:
+            return A
+        target = self.direction_double if out is None else out
+        assert target is not None  # single-precision arrays come with double-precision copies
+        np.copyto(target, A)
+        return target
+
+    @staticmethod
+    def dot(a: np.ndarray, b: np.ndarray) -> float:
+        return float(np.vdot(a, b))
+
+
 def _projected_cg(
     prob,
     U0,
@@ -347,26 +385,23 @@ def _projected_cg(
     # single precision (one flag decides both which transform runs and whether a stall ends)
     double_directions = not single_precision_directions
     # work arrays of the padded grid, reused across the iterations: a fresh array of a few
-    # megabytes is fresh pages from the system, whose faults cost system time.  The products
-    # of one iteration go into the first two; the trial state into the spare U and P, which
-    # are the previous ones once a step is accepted; the free gradient alternates between two
-    # (the previous one is needed for the conjugate direction)
-    preconditioned_buffer = np.empty(prob.padded)
-    spare_U, spare_P, difference = np.empty(prob.padded), np.empty(prob.padded), np.empty(prob.padded)
-    gradient_buffers = (np.empty(prob.padded), np.empty(prob.padded))
-    direction_pressure_buffer = None if double_directions else np.empty(prob.padded)
+    # megabytes is fresh pages from the system, whose faults cost system time.  The trial
+    # state goes into the spare U and P, which are the previous ones once a step is accepted
+    spare_U, spare_P, spare_G = np.empty(prob.padded), np.empty(prob.padded), np.empty(prob.padded)
     # a projection's move (zero off the face, where it is never written) and its pressure
     move = None if double_directions else np.zeros(prob.padded)
     move_pressure = None if double_directions else np.empty(prob.padded)
+    work = _DirectionArrays(prob.padded, double_directions)
     updated = False  # P, E and G carry incremental updates since they were last computed from U
 
     def free_gradient(G, at_wall_face):
         # cells held at the wall (pressed onto it), on the raster's corner; the gradient without
-        # them and its scaled largest magnitude, the projected-gradient measure of convergence
+        # them, in the directions' precision, and its scaled largest magnitude, the projected-
+        # gradient measure of convergence
         fixed = np.zeros(face_block.shape, bool)
         fixed[face_block] = at_wall_face & (prob.on_face(G) > 0)
-        Gf = gradient_buffers[0] if gradient_buffers[0] is not Gf_previous else gradient_buffers[1]
-        np.copyto(Gf, G)
+        Gf = work.gradients[0] if work.gradients[0] is not Gf_previous else work.gradients[1]
+        np.copyto(Gf, G, casting="same_kind")
         Gf[corner][fixed] = 0.0
         return fixed, Gf, _largest_magnitude(Gf) * prob.self_compliance / (prob.cell * L)
 
@@ -386,41 +421,48 @@ def _projected_cg(
             fixed, Gf, pg = free_gradient(G, at_wall_face)
         if pg <= gtol:
             return Minimum(U, P, E, it - 1, evals, True, pg)
-        preconditioned = prob.preconditioned(Gf, out=preconditioned_buffer)
+        preconditioned = prob.preconditioned(Gf, out=work.preconditioned)
         preconditioned[corner][fixed] = 0.0
-        zg = float(np.vdot(preconditioned, Gf))
+        zg = work.dot(preconditioned, Gf)
         same_set = not restart_on_wall_change or np.array_equal(fixed, fixed_previous)
         gs = 0.0
         if direction is not None and Gf_previous is not None and same_set and zg_previous > 0:
-            beta = max(0.0, float(np.vdot(preconditioned, np.subtract(Gf, Gf_previous, out=difference))) / zg_previous)
+            beta = max(0.0, work.dot(preconditioned, np.subtract(Gf, Gf_previous, out=work.difference)) / zg_previous)
             # in place (the previous direction is not needed again): beta d - z
             direction *= beta
             direction -= preconditioned
             direction[corner][fixed] = 0.0
-            gs = float(np.vdot(direction, Gf))
+            # the slope and the step in double precision (the gradient without the fixed cells
+            # is G where the direction is not zero)
+            direction_double = work.double(direction)
+            gs = float(np.vdot(direction_double, Gf if double_directions else G))
             if gs >= 0:
-                direction = -preconditioned
-                gs = float(np.vdot(Gf, direction))
+                direction = np.negative(preconditioned, out=work.direction)
+                direction_double = work.double(direction)
+                gs = float(np.vdot(Gf if double_directions else G, direction_double))
         else:
-            direction = -preconditioned
-            gs = float(np.vdot(Gf, direction))
+            direction = np.negative(preconditioned, out=work.direction)
+            direction_double = work.double(direction)
+            gs = float(np.vdot(Gf if double_directions else G, direction_double))
         fixed_previous, zg_previous, Gf_previous = fixed, zg, Gf
         if double_directions:
             direction_pressure = prob.pressure(direction)
         else:
-            direction_pressure = prob.pressure_single(direction, out=direction_pressure_buffer)
-        elastic_curvature = float(np.vdot(direction, direction_pressure))
-        direction_load = float(np.vdot(direction, P))  # the elastic energy's slope along the direction
+            direction_pressure = work.double(
+                prob.pressure_single(direction, out=work.direction_pressure), work.direction_pressure_double
+            )
+        elastic_curvature = float(np.vdot(direction_double, direction_pressure))
+        direction_load = float(np.vdot(direction_double, P))  # the elastic energy's slope along the direction
         curvature = elastic_curvature
         if potential is not None and curvature_face is not None:
             # phi'' at U, from the evaluation that produced U's energy (one exponential per evaluation)
-            direction_face = prob.on_face(direction)
+            direction_face = prob.on_face(direction_double)
             curvature += float(np.dot(curvature_face * direction_face, direction_face))
         # Newton step on the local quadratic model; where the adhesion makes the model concave along
         # the direction, the elastic curvature alone sets a first trial (backtracking follows)
         alpha = -gs / (prob.cell * (curvature if curvature > 0 else elastic_curvature))
         for halvings in range(60):  # noqa: B007  (the count is read after the loop)
-            Un = np.multiply(direction, alpha, out=spare_U)
+            Un = np.multiply(direction_double, alpha, out=spare_U)
             Un += U
             Un_face = prob.on_face(Un)
             clipped = None
@@ -445,17 +487,17 @@ def _projected_cg(
             # a pressure carried along the step, not computed from Un by energy_terms, is
             # recomputed from U before a minimum is accepted
             Pn_updated = Pn is not None
-            En, Gn, Pn, curvature_face_n, phi_n = prob.energy_terms(Un, d, adhesive, Pn)
+            En, Gn, Pn, curvature_face_n, phi_n = prob.energy_terms(Un, d, adhesive, Pn, gradient_out=spare_G)
             evals += 1
             # the step's change from the cells' changes, not En - E: the two totals carry
             # round-off (about 1e-11 of E on a 3200^2 grid) above the decrease of a step near the
             # minimum, where comparing them would let round-off decide which steps pass
             change = step_energy_change(
-                prob, alpha, direction, direction_load, elastic_curvature, P, Pn, clipped, phi, phi_n
+                prob, alpha, direction_double, direction_load, elastic_curvature, P, Pn, clipped, phi, phi_n
             )
             if change <= 1e-4 * alpha * gs:
                 break
-            if abs(change) <= 1e-12 * abs(E) and abs(float(np.vdot(Gn, direction))) <= 0.9 * abs(gs):
+            if abs(change) <= 1e-12 * abs(E) and abs(float(np.vdot(Gn, direction_double))) <= 0.9 * abs(gs):
                 # a change below what the totals could resolve: accept a step that flattens the
                 # slope along the direction (a Wolfe-type condition), as the totals' comparison
                 # did; it may raise the energy by at most that much
@@ -485,7 +527,7 @@ def _projected_cg(
                 "while the projected gradient did not halve"
             )
             return Minimum(Un, Pn, En, it, evals, pg <= gtol, pg, why)
-        spare_U, spare_P = U, P
+        spare_U, spare_P, spare_G = U, P, G
         U, P, E, G, curvature_face, phi = Un, Pn, En, Gn, curvature_face_n, phi_n
         updated = Pn_updated
         if stalled:
@@ -494,6 +536,8 @@ def _projected_cg(
             # precision from a fresh evaluation (a stall there ends the minimisation as above)
             double_directions = True
             direction = None
+            work = _DirectionArrays(prob.padded, double_directions)
+            Gf_previous = None
             E, G, P, curvature_face, phi = prob.energy_terms(U, d, adhesive)
             evals += 1
             updated = False

@@ -139,7 +139,9 @@ class EnergyProblem:
 
     def _single_precision(self, A: np.ndarray, factor: np.ndarray, out: np.ndarray | None) -> np.ndarray:
         """:meth:`_transform` in single precision; returned in double precision (in ``out`` if
-        given)."""
+        given), or, for ``A`` and ``out`` both in single precision, in ``out`` without copies."""
+        if A.dtype == np.float32 and out is not None and out.dtype == np.float32:
+            return self._transform(A, factor, out)
         single = self._buffer("real_single", self.padded, np.float32)
         np.copyto(single, A, casting="same_kind")
         result = self._transform(single, factor, single)
@@ -211,13 +213,13 @@ class EnergyProblem:
         U : numpy.ndarray
             Surface displacements on the padded grid.
         out : numpy.ndarray or None, optional
-            A float64 array of the padded grid's shape to write the result into (a new one
-            when None).
+            An array of the padded grid's shape to write the result into (a new float64 one
+            when None): float64, or float32 when ``U`` is float32 too (then no copy is made).
 
         Returns
         -------
         numpy.ndarray
-            C^-1 U, float64, on the padded grid (``out`` when given).
+            C^-1 U on the padded grid (``out`` when given), float64 unless ``out`` is float32.
         """
         return self._single_precision(U, self.inverse_factor_single, out)
 
@@ -233,13 +235,13 @@ class EnergyProblem:
         G : numpy.ndarray
             A gradient on the padded grid.
         out : numpy.ndarray or None, optional
-            A float64 array of the padded grid's shape to write the result into (a new one
-            when None).
+            An array of the padded grid's shape to write the result into (a new float64 one
+            when None): float64, or float32 when ``G`` is float32 too (then no copy is made).
 
         Returns
         -------
         numpy.ndarray
-            C G, float64, on the padded grid (``out`` when given).
+            C G on the padded grid (``out`` when given), float64 unless ``out`` is float32.
         """
         return self._single_precision(G, self.symbol_factor_single, out)
 
@@ -307,7 +309,14 @@ class EnergyProblem:
         E, G, P, _, _ = self.energy_terms(U, d, adhesive, P)
         return E, G, P
 
-    def energy_terms(self, U: np.ndarray, d: float, adhesive: bool, P: np.ndarray | None = None):
+    def energy_terms(
+        self,
+        U: np.ndarray,
+        d: float,
+        adhesive: bool,
+        P: np.ndarray | None = None,
+        gradient_out: np.ndarray | None = None,
+    ):
         """:meth:`energy` with phi''(g) and phi(g) of each face cell, from one exponential.
 
         The projected CG's step model needs the curvature phi'', and it sums a step's energy
@@ -323,11 +332,14 @@ class EnergyProblem:
             Whether the adhesive potential is switched on.
         P : numpy.ndarray or None, optional
             C^-1 U when already known (saves two FFTs).
+        gradient_out : numpy.ndarray or None, optional
+            A float64 array of the padded grid's shape to write the gradient into (a new one
+            when None).
 
         Returns
         -------
         energy, gradient, P
-            As for :meth:`energy`.
+            As for :meth:`energy` (the gradient in ``gradient_out`` when given).
         curvature : numpy.ndarray or None
             phi'' at the face cells' gaps (1-D, face order); None without the adhesive term.
         phi : numpy.ndarray or None
@@ -336,7 +348,7 @@ class EnergyProblem:
         if P is None:
             P = self.pressure(U)
         E = 0.5 * float(np.vdot(U, P))
-        G = np.multiply(P, self.cell)
+        G = np.multiply(P, self.cell, out=gradient_out)
         curvature = phi = None
         if adhesive and self.potential is not None:
             phi, stress, curvature = self.potential.evaluate(self.gap(U, d))

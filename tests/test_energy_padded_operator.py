@@ -54,6 +54,13 @@ def test_buffered_transforms_equal_scipy_fft_bit_for_bit(shape, spacing):
         assert np.array_equal(out, expected_single)
         assert prob.preconditioned(U, out=out) is out
         assert np.array_equal(out, expected_preconditioned)
+        # single precision in and out (the projected CG's direction arrays): the same numbers,
+        # without the copies to and from double precision
+        out_single = np.full(s, np.nan, np.float32)
+        assert prob.pressure_single(single, out=out_single) is out_single
+        assert np.array_equal(out_single, expected_single)
+        assert prob.preconditioned(single, out=out_single) is out_single
+        assert np.array_equal(out_single, expected_preconditioned)
     # a result handed out is not a buffer that the next product overwrites
     first = prob.pressure_single(U)
     prob.pressure_single(2 * U)
