@@ -228,6 +228,14 @@ def _largest_magnitude(A: np.ndarray) -> float:
     return float(max(A.max(), -A.min()))
 
 
+def _power_of_two_near_inverse(x: float) -> float:
+    """2^-e with x = m 2^e, 1/2 <= m < 1 (so that x 2^-e lies in [1/2, 1)); 1 for x zero or not
+    finite.  Multiplying by it is exact in any binary precision."""
+    if not (x > 0 and math.isfinite(x)):
+        return 1.0
+    return math.ldexp(1.0, -math.frexp(x)[1])
+
+
 # ---------------------------------------------------------------------------
 # Polonsky-Keer / Rey style projected conjugate gradients
 # ---------------------------------------------------------------------------
@@ -299,16 +307,17 @@ FLAT_STEPS, FLAT_ENERGY = 20, 1e-10
 
 class _DirectionArrays:
     """The projected CG's search-direction arrays of the padded grid, allocated once per
-    minimisation: the free gradient (two, the previous one is needed for the conjugate
-    direction), its preconditioned image, their difference, the direction and its pressure.
+    minimisation and precision: the free gradient (two, the previous one is needed for the
+    conjugate direction), its preconditioned image, their difference, the direction and its
+    pressure.
 
     With single-precision directions they are float32: the preconditioner and the direction's
     pressure are single-precision transforms anyway, and besides those two transforms an
-    iteration streams these arrays through memory about a dozen times, each pass then moving
-    half the bytes.  The direction and its pressure are copied to double precision once per
-    iteration (:meth:`double`), for the step, its slope and its energy change, which stay in
-    double precision; the products of two single-precision arrays (``dot``, accumulated in
-    their precision) only weigh the conjugate directions."""
+    iteration streams these arrays through memory about a dozen times, in half the bytes.  The
+    direction and its pressure are copied to double precision once per iteration
+    (:meth:`double`), for the step, its slope and its energy change, which stay in double
+    precision; the products of two single-precision arrays (``dot``, accumulated in their
+    precision) only weigh the conjugate directions."""
 
     def __init__(self, shape: tuple[int, int], double: bool):
         dtype = np.float64 if double else np.float32
@@ -386,12 +395,19 @@ def _projected_cg(
     double_directions = not single_precision_directions
     # work arrays of the padded grid, reused across the iterations: a fresh array of a few
     # megabytes is fresh pages from the system, whose faults cost system time.  The trial
-    # state goes into the spare U and P, which are the previous ones once a step is accepted
+    # state goes into the spare U, P and G, which are the previous ones once a step is accepted
     spare_U, spare_P, spare_G = np.empty(prob.padded), np.empty(prob.padded), np.empty(prob.padded)
     # a projection's move (zero off the face, where it is never written) and its pressure
     move = None if double_directions else np.zeros(prob.padded)
     move_pressure = None if double_directions else np.empty(prob.padded)
     work = _DirectionArrays(prob.padded, double_directions)
+    # single-precision directions carry the gradient times a power of two that brings its
+    # largest entry near 1: in small units (nanometres and gigapascals) the products of two
+    # single-precision arrays (zg, beta) would otherwise fall below float32's range.  The
+    # direction is then that power of two times the unscaled one, which the step length alpha
+    # undoes exactly (its slope and curvatures scale with it), so the iterates are those of
+    # the unscaled directions bit for bit wherever nothing underflows
+    gradient_scale = 1.0 if double_directions else _power_of_two_near_inverse(_largest_magnitude(G))
     updated = False  # P, E and G carry incremental updates since they were last computed from U
 
     def free_gradient(G, at_wall_face):
@@ -403,7 +419,10 @@ def _projected_cg(
         Gf = work.gradients[0] if work.gradients[0] is not Gf_previous else work.gradients[1]
         np.copyto(Gf, G, casting="same_kind")
         Gf[corner][fixed] = 0.0
-        return fixed, Gf, _largest_magnitude(Gf) * prob.self_compliance / (prob.cell * L)
+        largest = _largest_magnitude(Gf)
+        if gradient_scale != 1.0:
+            Gf *= gradient_scale
+        return fixed, Gf, largest * prob.self_compliance / (prob.cell * L)
 
     for it in range(1, max_iterations + 1):
         at_wall_face = prob.on_face(U) <= wall + 1e-13 * L
@@ -414,7 +433,8 @@ def _projected_cg(
                 return Minimum(U, P, E, it - 1, evals, False, math.inf, "peeling off", peeled=True)
         fixed, Gf, pg = free_gradient(G, at_wall_face)
         if pg <= gtol and updated and single_precision_directions:
-            # judge the minimum on the gradient computed from U in double precision
+            # judge the minimum on the gradient computed from U in double precision (its largest
+            # free entry read after rounding to the directions' precision, 6e-8 relative)
             E, G, P, curvature_face, phi = prob.energy_terms(U, d, adhesive)
             evals += 1
             updated = False
@@ -432,18 +452,18 @@ def _projected_cg(
             direction *= beta
             direction -= preconditioned
             direction[corner][fixed] = 0.0
-            # the slope and the step in double precision (the gradient without the fixed cells
-            # is G where the direction is not zero)
+            # the slope and the step in double precision (the direction is zero on the fixed
+            # cells, the only ones where the free gradient differs from G)
             direction_double = work.double(direction)
-            gs = float(np.vdot(direction_double, Gf if double_directions else G))
+            gs = float(np.vdot(direction_double, G))
             if gs >= 0:
                 direction = np.negative(preconditioned, out=work.direction)
                 direction_double = work.double(direction)
-                gs = float(np.vdot(Gf if double_directions else G, direction_double))
+                gs = float(np.vdot(G, direction_double))
         else:
             direction = np.negative(preconditioned, out=work.direction)
             direction_double = work.double(direction)
-            gs = float(np.vdot(Gf if double_directions else G, direction_double))
+            gs = float(np.vdot(G, direction_double))
         fixed_previous, zg_previous, Gf_previous = fixed, zg, Gf
         if double_directions:
             direction_pressure = prob.pressure(direction)
@@ -537,6 +557,7 @@ def _projected_cg(
             double_directions = True
             direction = None
             work = _DirectionArrays(prob.padded, double_directions)
+            gradient_scale = 1.0
             Gf_previous = None
             E, G, P, curvature_face, phi = prob.energy_terms(U, d, adhesive)
             evals += 1

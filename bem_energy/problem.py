@@ -202,7 +202,8 @@ class EnergyProblem:
         return sfft.irfft2(F, s=self.padded, overwrite_x=True)
 
     def pressure_single(self, U: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
-        """C^-1 U in single precision (returned in double): a search direction's pressure.
+        """C^-1 U in single precision (returned in double unless ``out`` is float32): a search
+        direction's pressure.
 
         The projected CG adds it, times the step, to a pressure that is recomputed in double
         precision from U every few dozen iterations and before a minimum is accepted, so its
@@ -213,8 +214,9 @@ class EnergyProblem:
         U : numpy.ndarray
             Surface displacements on the padded grid.
         out : numpy.ndarray or None, optional
-            An array of the padded grid's shape to write the result into (a new float64 one
-            when None): float64, or float32 when ``U`` is float32 too (then no copy is made).
+            A float64 or float32 array of the padded grid's shape to write the result into (a
+            new float64 one when None); with ``U`` and ``out`` both float32 the transform reads
+            and writes them directly.
 
         Returns
         -------
@@ -224,7 +226,8 @@ class EnergyProblem:
         return self._single_precision(U, self.inverse_factor_single, out)
 
     def preconditioned(self, G: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
-        """C G in single precision (returned in double): the projected CG's preconditioner.
+        """C G in single precision (returned in double unless ``out`` is float32): the projected
+        CG's preconditioner.
 
         It only chooses search directions, whose step lengths, energies and gradients are evaluated
         in double precision, so its round-off (1e-7 relative) changes the iterates' path by that
@@ -235,8 +238,9 @@ class EnergyProblem:
         G : numpy.ndarray
             A gradient on the padded grid.
         out : numpy.ndarray or None, optional
-            An array of the padded grid's shape to write the result into (a new float64 one
-            when None): float64, or float32 when ``G`` is float32 too (then no copy is made).
+            A float64 or float32 array of the padded grid's shape to write the result into (a
+            new float64 one when None); with ``G`` and ``out`` both float32 the transform reads
+            and writes them directly.
 
         Returns
         -------
@@ -333,8 +337,8 @@ class EnergyProblem:
         P : numpy.ndarray or None, optional
             C^-1 U when already known (saves two FFTs).
         gradient_out : numpy.ndarray or None, optional
-            A float64 array of the padded grid's shape to write the gradient into (a new one
-            when None).
+            A float64 array of the padded grid's shape, not ``P`` itself, to write the gradient
+            into (a new one when None).
 
         Returns
         -------

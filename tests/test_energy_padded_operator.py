@@ -54,8 +54,7 @@ def test_buffered_transforms_equal_scipy_fft_bit_for_bit(shape, spacing):
         assert np.array_equal(out, expected_single)
         assert prob.preconditioned(U, out=out) is out
         assert np.array_equal(out, expected_preconditioned)
-        # single precision in and out (the projected CG's direction arrays): the same numbers,
-        # without the copies to and from double precision
+        # single precision in and out (the projected CG's direction arrays): the same numbers
         out_single = np.full(s, np.nan, np.float32)
         assert prob.pressure_single(single, out=out_single) is out_single
         assert np.array_equal(out_single, expected_single)
@@ -84,3 +83,27 @@ def test_projected_cg_states_are_its_own_and_consistent(single):
     assert np.array_equal(first.U, U) and np.array_equal(first.P, P)
     for m in (first, second):
         assert np.max(np.abs(m.P - prob.pressure(m.U))) <= 1e-9 * np.max(np.abs(m.P))
+
+
+def test_single_precision_directions_work_in_any_units():
+    # the same dimensionless problem in nanometres and gigapascals (or kilopascals): the
+    # single-precision directions' products (of the order of the squared gradient times C)
+    # would fall below float32's range without the gradient's power-of-two scaling, and the
+    # conjugate directions would then degrade silently to steepest descent (more iterations)
+    results = {}
+    for a, modulus in ((1.0, 1.0), (1e-9, 1e9), (1e-9, 1e6)):
+        rho, gtol = 0.08 * a, 1e-8
+        work = 0.02 * modulus * a
+        sc = cs.Scene(cs.Indenter(cs.Circle(a)), cs.Homogeneous(modulus, 0.0), cs.Adhesion(work, rho))
+        prob = be.build_problem(sc, a / 12, be.Potential(work, rho, "exponential"))
+        first = be.minimise(
+            prob, np.zeros(prob.padded), -0.05 * a, True, method="pk", gtol=gtol, single_precision_directions=True
+        )
+        second = be.minimise(prob, first.U, -0.1 * a, True, method="pk", gtol=gtol, single_precision_directions=True)
+        assert first.converged and second.converged
+        results[a, modulus] = (first.iterations, second.iterations, prob.force(second.P) / (modulus * a * a))
+    reference = results[1.0, 1.0]
+    for its_first, its_second, force in results.values():
+        assert (its_first, its_second) == reference[:2]
+        # the minima agree to the minimiser's tolerance
+        assert force == pytest.approx(reference[2], rel=10 * gtol)
