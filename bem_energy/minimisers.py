@@ -401,13 +401,18 @@ def _projected_cg(
     move = None if double_directions else np.zeros(prob.padded)
     move_pressure = None if double_directions else np.empty(prob.padded)
     work = _DirectionArrays(prob.padded, double_directions)
-    # single-precision directions carry the gradient times a power of two that brings its
-    # largest entry near 1: in small units (nanometres and gigapascals) the products of two
-    # single-precision arrays (zg, beta) would otherwise fall below float32's range.  The
-    # direction is then that power of two times the unscaled one, which the step length alpha
-    # undoes exactly (its slope and curvatures scale with it), so the iterates are those of
-    # the unscaled directions bit for bit wherever nothing underflows
-    gradient_scale = 1.0 if double_directions else _power_of_two_near_inverse(_largest_magnitude(G))
+    # single-precision directions carry the gradient times a power of two that brings the
+    # products of two single-precision arrays (zg and beta's, about C_00 times the gradient
+    # squared) near 1 at the start: in small units (nanometres and gigapascals) they would
+    # otherwise fall below float32's range.  The direction is then that power of two times the
+    # unscaled one, which the step length alpha undoes exactly (its slope and curvatures scale
+    # with it), so the iterates are those of the unscaled directions bit for bit wherever
+    # nothing underflows
+    gradient_scale = (
+        1.0
+        if double_directions
+        else _power_of_two_near_inverse(_largest_magnitude(G) * math.sqrt(prob.self_compliance))
+    )
     updated = False  # P, E and G carry incremental updates since they were last computed from U
 
     def free_gradient(G, at_wall_face):
