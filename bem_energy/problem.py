@@ -202,8 +202,9 @@ class EnergyProblem:
         return sfft.irfft2(F, s=self.padded, overwrite_x=True)
 
     def pressure_single(self, U: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
-        """C^-1 U in single precision (returned in double unless ``out`` is float32): a search
-        direction's pressure.
+        """C^-1 U in single precision: a search direction's pressure.
+
+        Returned in double precision unless ``out`` is float32.
 
         The projected CG adds it, times the step, to a pressure that is recomputed in double
         precision from U every few dozen iterations and before a minimum is accepted, so its
@@ -226,8 +227,9 @@ class EnergyProblem:
         return self._single_precision(U, self.inverse_factor_single, out)
 
     def preconditioned(self, G: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
-        """C G in single precision (returned in double unless ``out`` is float32): the projected
-        CG's preconditioner.
+        """C G in single precision: the projected CG's preconditioner.
+
+        Returned in double precision unless ``out`` is float32.
 
         It only chooses search directions, whose step lengths, energies and gradients are evaluated
         in double precision, so its round-off (1e-7 relative) changes the iterates' path by that
