@@ -611,7 +611,9 @@ def write(cache: Path, criterion: str, ratios=None) -> None:
     zs = ZeroRangeSettings() if ratios is None else ZeroRangeSettings(ratios=tuple(ratios))
     lcs = ", ".join(f"{r:g}" for r in zs.ratios)
     when = datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")
-    rev = _timing.revision()
+    # both before faces.json is written: the file this writes would otherwise mark the
+    # revision as one with uncommitted changes
+    rev, provenance = _timing.revision(), _timing.provenance()
     doc = {
         "description": (
             "Converged reference values of the built-in non-circular faces (issue #22): F_A / F_A,upper "
@@ -729,7 +731,7 @@ def write(cache: Path, criterion: str, ratios=None) -> None:
                     "platform": platform.platform(),
                     "processor": platform.processor() or platform.machine(),
                     "cpus": os.cpu_count(),
-                    "provenance": _timing.provenance(),
+                    "provenance": provenance,
                 },
                 "revision": rev,
                 "load_at_write": load,
