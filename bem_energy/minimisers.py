@@ -316,7 +316,7 @@ class _DirectionArrays:
     iteration streams these arrays through memory about a dozen times, in half the bytes.  The
     direction and its pressure are copied to double precision once per iteration
     (:meth:`double`), for the step, its slope and its energy change, which stay in double
-    precision; the products of two single-precision arrays (``dot``, accumulated in their
+    precision; the products of two single-precision arrays (numpy's vdot, accumulated in their
     precision) only weigh the conjugate directions."""
 
     def __init__(self, shape: tuple[int, int], double: bool):
@@ -338,10 +338,6 @@ class _DirectionArrays:
         assert target is not None  # single-precision arrays come with double-precision copies
         np.copyto(target, A)
         return target
-
-    @staticmethod
-    def dot(a: np.ndarray, b: np.ndarray) -> float:
-        return float(np.vdot(a, b))
 
 
 def _projected_cg(
@@ -448,11 +444,12 @@ def _projected_cg(
             return Minimum(U, P, E, it - 1, evals, True, pg)
         preconditioned = prob.preconditioned(Gf, out=work.preconditioned)
         preconditioned[corner][fixed] = 0.0
-        zg = work.dot(preconditioned, Gf)
+        zg = float(np.vdot(preconditioned, Gf))
         same_set = not restart_on_wall_change or np.array_equal(fixed, fixed_previous)
         gs = 0.0
         if direction is not None and Gf_previous is not None and same_set and zg_previous > 0:
-            beta = max(0.0, work.dot(preconditioned, np.subtract(Gf, Gf_previous, out=work.difference)) / zg_previous)
+            change_of_gradient = np.subtract(Gf, Gf_previous, out=work.difference)
+            beta = max(0.0, float(np.vdot(preconditioned, change_of_gradient)) / zg_previous)
             # in place (the previous direction is not needed again): beta d - z
             direction *= beta
             direction -= preconditioned
