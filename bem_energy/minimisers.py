@@ -228,6 +228,14 @@ def _largest_magnitude(A: np.ndarray) -> float:
     return float(max(A.max(), -A.min()))
 
 
+def _largest_gradient(prob: EnergyProblem, P: np.ndarray, face_gradient: np.ndarray) -> float:
+    """max |dPi/dU| over the padded grid, from P (the gradient is cell P off the face) and the
+    face's entries."""
+    gradient = np.multiply(P, prob.cell)
+    prob.crop(gradient)[prob.face_block] = face_gradient
+    return _largest_magnitude(gradient)
+
+
 def _power_of_two_near_inverse(x: float) -> float:
     """2^-e with x = m 2^e, 1/2 <= m < 1 (so that x 2^-e lies in [1/2, 1)); 1 for x zero or not
     finite.  Multiplying by it is exact in any binary precision."""
@@ -281,7 +289,7 @@ def step_energy_change(
         The projection's move of the face cells (face order), None when no cell was projected
         (then Pn = P + alpha C^-1 direction).
     phi, phi_n : numpy.ndarray or None
-        The face cells' potential energies before and after (``EnergyProblem.energy_terms``);
+        The face cells' potential energies before and after (``EnergyProblem.energy_state``);
         None without the adhesive term.
 
     Returns
@@ -363,7 +371,8 @@ def _projected_cg(
     pressure is updated along each step from the direction's pressure (in single precision
     with ``single_precision_directions``, and so is a projected step's, plus the pressure of
     the projection's move) and recomputed from U every 50 iterations and, in single
-    precision, before a minimum is accepted.  A minimisation that has stagnated (40
+    precision, before a minimum is accepted; the energy is summed from the steps' changes
+    between those evaluations.  A minimisation that has stagnated (40
     halvings for a decrease, or a projected gradient that has not halved in ``FLAT_STEPS``
     steps while the energy fell by less than ``FLAT_ENERGY`` of itself) goes on in double
     precision if its directions were in single precision, and otherwise stops with a message
@@ -376,8 +385,11 @@ def _projected_cg(
     face_block = prob.face_block
     wall = _lower_bound(prob, d)
     U = U0.copy()
-    U[corner][face_block] = np.maximum(prob.on_face(U), wall)
-    E, G, P, curvature_face, phi = prob.energy_terms(U, d, adhesive)
+    # the face's displacements are carried beside U (the projection and the trial step form
+    # them anyway), and the gradient as its face entries beside P: off the face it is cell P
+    U_face = np.maximum(prob.on_face(U), wall)
+    U[corner][face_block] = U_face
+    E, P, G_face, stress, curvature_face, phi = prob.energy_state(U, d, adhesive, U_face=U_face)
     direction = None
     Gf_previous = None
     zg_previous = 0.0  # no previous step: the first direction is steepest descent
@@ -391,8 +403,8 @@ def _projected_cg(
     double_directions = not single_precision_directions
     # work arrays of the padded grid, reused across the iterations: a fresh array of a few
     # megabytes is fresh pages from the system, whose faults cost system time.  The trial
-    # state goes into the spare U, P and G, which are the previous ones once a step is accepted
-    spare_U, spare_P, spare_G = np.empty(prob.padded), np.empty(prob.padded), np.empty(prob.padded)
+    # state goes into the spare U and P, which are the previous ones once a step is accepted
+    spare_U, spare_P = np.empty(prob.padded), np.empty(prob.padded)
     # a projection's move (zero off the face, where it is never written) and its pressure
     move = None if double_directions else np.zeros(prob.padded)
     move_pressure = None if double_directions else np.empty(prob.padded)
@@ -407,39 +419,54 @@ def _projected_cg(
     gradient_scale = (
         1.0
         if double_directions
-        else _power_of_two_near_inverse(_largest_magnitude(G) * math.sqrt(prob.self_compliance))
+        else _power_of_two_near_inverse(_largest_gradient(prob, P, G_face) * math.sqrt(prob.self_compliance))
     )
-    updated = False  # P, E and G carry incremental updates since they were last computed from U
+    # P carries incremental updates since it was last computed from U (E always does: it is
+    # summed from the steps' changes between evaluations from U)
+    updated = False
 
-    def free_gradient(G, at_wall_face):
+    def free_gradient(P, G_face, at_wall_face):
         # cells held at the wall (pressed onto it), on the raster's corner; the gradient without
-        # them, in the directions' precision, and its scaled largest magnitude, the projected-
-        # gradient measure of convergence
+        # them, times gradient_scale in the directions' precision (the power of two makes the
+        # scaled single-precision entries those of the unscaled ones times it, bit for bit), and
+        # its scaled largest magnitude, the projected-gradient measure of convergence
+        fixed_face = at_wall_face & (G_face > 0)
         fixed = np.zeros(face_block.shape, bool)
-        fixed[face_block] = at_wall_face & (prob.on_face(G) > 0)
+        fixed[face_block] = fixed_face
         Gf = work.gradients[0] if work.gradients[0] is not Gf_previous else work.gradients[1]
-        np.copyto(Gf, G, casting="same_kind")
-        Gf[corner][fixed] = 0.0
-        largest = _largest_magnitude(Gf)
-        if gradient_scale != 1.0:
-            Gf *= gradient_scale
+        np.multiply(P, prob.cell * gradient_scale, out=Gf, casting="same_kind")
+        scaled_face = G_face * gradient_scale
+        scaled_face[fixed_face] = 0.0
+        Gf[corner][face_block] = scaled_face
+        largest = _largest_magnitude(Gf) / gradient_scale
         return fixed, Gf, largest * prob.self_compliance / (prob.cell * L)
 
+    def slope(direction_double, P, stress, direction_face=None):
+        # the energy's slope along a direction (zero on the fixed cells), from the elastic
+        # energy's (direction . P, the direction's load) and the face's adhesive stress; and the
+        # direction's face entries, which the adhesive curvature reads
+        load = float(np.vdot(direction_double, P))
+        if stress is None:
+            return prob.cell * load, load, None
+        if direction_face is None:
+            direction_face = prob.on_face(direction_double)
+        return prob.cell * (load + float(np.dot(direction_face, stress))), load, direction_face
+
     for it in range(1, max_iterations + 1):
-        at_wall_face = prob.on_face(U) <= wall + 1e-13 * L
+        at_wall_face = U_face <= wall + 1e-13 * L
         if peel_fraction is not None:
             in_contact = int(np.count_nonzero(at_wall_face))
             most_in_contact = max(most_in_contact, in_contact)
             if in_contact < (1.0 - peel_fraction) * most_in_contact:
                 return Minimum(U, P, E, it - 1, evals, False, math.inf, "peeling off", peeled=True)
-        fixed, Gf, pg = free_gradient(G, at_wall_face)
+        fixed, Gf, pg = free_gradient(P, G_face, at_wall_face)
         if pg <= gtol and updated and single_precision_directions:
             # judge the minimum on the gradient computed from U in double precision (its largest
             # free entry read after rounding to the directions' precision, 6e-8 relative)
-            E, G, P, curvature_face, phi = prob.energy_terms(U, d, adhesive)
+            E, P, G_face, stress, curvature_face, phi = prob.energy_state(U, d, adhesive, U_face=U_face)
             evals += 1
             updated = False
-            fixed, Gf, pg = free_gradient(G, at_wall_face)
+            fixed, Gf, pg = free_gradient(P, G_face, at_wall_face)
         if pg <= gtol:
             return Minimum(U, P, E, it - 1, evals, True, pg)
         preconditioned = prob.preconditioned(Gf, out=work.preconditioned)
@@ -455,17 +482,17 @@ def _projected_cg(
             direction -= preconditioned
             direction[corner][fixed] = 0.0
             # the slope and the step in double precision (the direction is zero on the fixed
-            # cells, the only ones where the free gradient differs from G)
+            # cells, the only ones where the free gradient differs from the gradient)
             direction_double = work.double(direction)
-            gs = float(np.vdot(direction_double, G))
+            gs, direction_load, direction_face = slope(direction_double, P, stress)
             if gs >= 0:
                 direction = np.negative(preconditioned, out=work.direction)
                 direction_double = work.double(direction)
-                gs = float(np.vdot(G, direction_double))
+                gs, direction_load, direction_face = slope(direction_double, P, stress)
         else:
             direction = np.negative(preconditioned, out=work.direction)
             direction_double = work.double(direction)
-            gs = float(np.vdot(G, direction_double))
+            gs, direction_load, direction_face = slope(direction_double, P, stress)
         fixed_previous, zg_previous, Gf_previous = fixed, zg, Gf
         if double_directions:
             direction_pressure = prob.pressure(direction)
@@ -474,11 +501,9 @@ def _projected_cg(
                 prob.pressure_single(direction, out=work.direction_pressure), work.direction_pressure_double
             )
         elastic_curvature = float(np.vdot(direction_double, direction_pressure))
-        direction_load = float(np.vdot(direction_double, P))  # the elastic energy's slope along the direction
         curvature = elastic_curvature
-        if potential is not None and curvature_face is not None:
+        if potential is not None and curvature_face is not None and direction_face is not None:
             # phi'' at U, from the evaluation that produced U's energy (one exponential per evaluation)
-            direction_face = prob.on_face(direction_double)
             curvature += float(np.dot(curvature_face * direction_face, direction_face))
         # Newton step on the local quadratic model; where the adhesion makes the model concave along
         # the direction, the elastic curvature alone sets a first trial (backtracking follows)
@@ -489,9 +514,10 @@ def _projected_cg(
             Un_face = prob.on_face(Un)
             clipped = None
             if (Un_face < wall).any():
-                clipped = np.maximum(Un_face, wall)
-                Un[corner][face_block] = clipped
-                clipped -= Un_face  # the projection's move, on the face cells
+                projected_face = np.maximum(Un_face, wall)
+                Un[corner][face_block] = projected_face
+                clipped = projected_face - Un_face  # the projection's move, on the face cells
+                Un_face = projected_face
                 if double_directions or move is None:
                     Pn = None
                 else:
@@ -506,20 +532,25 @@ def _projected_cg(
             else:
                 Pn = np.multiply(direction_pressure, alpha, out=spare_P)
                 Pn += P
-            # a pressure carried along the step, not computed from Un by energy_terms, is
+            # a pressure carried along the step, not computed from Un by energy_state, is
             # recomputed from U before a minimum is accepted
             Pn_updated = Pn is not None
-            En, Gn, Pn, curvature_face_n, phi_n = prob.energy_terms(Un, d, adhesive, Pn, gradient_out=spare_G)
+            _, Pn, Gn_face, stress_n, curvature_face_n, phi_n = prob.energy_state(
+                Un, d, adhesive, Pn, Un_face, total=False
+            )
             evals += 1
-            # the step's change from the cells' changes, not En - E: the two totals carry
-            # round-off (about 1e-11 of E on a 3200^2 grid) above the decrease of a step near the
-            # minimum, where comparing them would let round-off decide which steps pass
+            # the step's change from the cells' changes, not the difference of two totals: they
+            # carry round-off (about 1e-11 of E on a 3200^2 grid) above the decrease of a step
+            # near the minimum, where comparing them would let round-off decide which steps
+            # pass.  The trial's energy is E plus this change (no pass over Un.Pn for a total)
             change = step_energy_change(
                 prob, alpha, direction_double, direction_load, elastic_curvature, P, Pn, clipped, phi, phi_n
             )
             if change <= 1e-4 * alpha * gs:
                 break
-            if abs(change) <= 1e-12 * abs(E) and abs(float(np.vdot(Gn, direction_double))) <= 0.9 * abs(gs):
+            if abs(change) <= 1e-12 * abs(E) and abs(
+                slope(direction_double, Pn, stress_n, direction_face)[0]
+            ) <= 0.9 * abs(gs):
                 # a change below what the totals could resolve: accept a step that flattens the
                 # slope along the direction (a Wolfe-type condition), as the totals' comparison
                 # did; it may raise the energy by at most that much
@@ -527,6 +558,7 @@ def _projected_cg(
             alpha *= 0.5
         else:
             return Minimum(U, P, E, it, evals, False, pg, "line search failed")
+        En = E + change
         # a decrease found only 2^-40 along the model step is round-off in the energy: the
         # iteration has stagnated (l_c ~ Delta near a snap took 50 evaluations per step and
         # 150,000 in one minimisation before this stop).  So has one whose projected gradient
@@ -549,8 +581,17 @@ def _projected_cg(
                 "while the projected gradient did not halve"
             )
             return Minimum(Un, Pn, En, it, evals, pg <= gtol, pg, why)
-        spare_U, spare_P, spare_G = U, P, G
-        U, P, E, G, curvature_face, phi = Un, Pn, En, Gn, curvature_face_n, phi_n
+        spare_U, spare_P = U, P
+        U, U_face, P, E, G_face, stress, curvature_face, phi = (
+            Un,
+            Un_face,
+            Pn,
+            En,
+            Gn_face,
+            stress_n,
+            curvature_face_n,
+            phi_n,
+        )
         updated = Pn_updated
         if stalled:
             # the directions' single-precision pressures can stall the line search at their own
@@ -561,14 +602,14 @@ def _projected_cg(
             work = _DirectionArrays(prob.padded, double_directions)
             gradient_scale = 1.0
             Gf_previous = None
-            E, G, P, curvature_face, phi = prob.energy_terms(U, d, adhesive)
+            E, P, G_face, stress, curvature_face, phi = prob.energy_state(U, d, adhesive, U_face=U_face)
             evals += 1
             updated = False
             window_steps = 0
             continue
         if it % 50 == 0:
             # refresh P from U: the incremental update accumulates round-off
-            E, G, P, curvature_face, phi = prob.energy_terms(U, d, adhesive)
+            E, P, G_face, stress, curvature_face, phi = prob.energy_state(U, d, adhesive, U_face=U_face)
             updated = False
     return Minimum(U, P, E, max_iterations, evals, False, pg, "iteration limit")
 

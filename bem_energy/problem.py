@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 import threading
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 import scipy.fft as sfft
@@ -30,7 +31,35 @@ from halfspace.pocketfft import POCKETFFT as _pocketfft, norm_factor
 
 from .potentials import Potential, process_zone_exponent, process_zone_length, process_zone_modulus
 
-__all__ = ["EnergyProblem", "build_problem", "estimate_memory_gb"]
+__all__ = ["EnergyProblem", "EnergyState", "build_problem", "estimate_memory_gb"]
+
+
+class EnergyState(NamedTuple):
+    """The energy at a state U and the terms the projected CG reads
+    (:meth:`EnergyProblem.energy_state`).
+
+    Attributes
+    ----------
+    energy : float
+        Pi(U), in physical units.
+    pressure : numpy.ndarray
+        C^-1 U on the padded grid.
+    face_gradient : numpy.ndarray
+        dPi/dU at the face cells (1-D, face order); off the face it is cell P.
+    stress : numpy.ndarray or None
+        phi'(g) at the face cells; None without the adhesive term.
+    curvature : numpy.ndarray or None
+        phi''(g) at the face cells; None without the adhesive term.
+    phi : numpy.ndarray or None
+        phi(g) of the face cells; None without the adhesive term.
+    """
+
+    energy: float
+    pressure: np.ndarray
+    face_gradient: np.ndarray
+    stress: np.ndarray | None
+    curvature: np.ndarray | None
+    phi: np.ndarray | None
 
 
 def estimate_memory_gb(nx: int, ny: int, memory: int = 10) -> float:
@@ -351,17 +380,64 @@ class EnergyProblem:
         phi : numpy.ndarray or None
             phi(g) of the face cells (1-D, face order); None without the adhesive term.
         """
+        state = self.energy_state(U, d, adhesive, P)
+        G = np.multiply(state.pressure, self.cell, out=gradient_out)
+        if state.stress is not None:
+            # the face's gradient over P cell everywhere: one pass over the padded grid
+            self.crop(G)[self.face_block] = state.face_gradient
+        return state.energy, G, state.pressure, state.curvature, state.phi
+
+    def energy_state(
+        self,
+        U: np.ndarray,
+        d: float,
+        adhesive: bool,
+        P: np.ndarray | None = None,
+        U_face: np.ndarray | None = None,
+        total: bool = True,
+    ) -> EnergyState:
+        """The energy, the pressure and the face cells' terms, without the gradient's array.
+
+        Off the face the gradient is cell P, so the face's entries carry all it adds: the
+        projected CG reads the gradient from P and these, and an iteration streams one array of
+        the padded grid less through memory (two with the trial state's).
+
+        Parameters
+        ----------
+        U : numpy.ndarray
+            Surface displacements on the padded grid.
+        d : float
+            Approach of the punch.
+        adhesive : bool
+            Whether the adhesive potential is switched on.
+        P : numpy.ndarray or None, optional
+            C^-1 U when already known (saves two FFTs).
+        U_face : numpy.ndarray or None, optional
+            ``on_face(U)`` when already known.
+        total : bool, optional
+            Whether to sum the energy; without it (a trial step's state, whose energy the
+            projected CG sums from the step's change) ``energy`` is NaN and the pass over
+            U.P is saved.
+
+        Returns
+        -------
+        EnergyState
+            The energy Pi, P, the gradient's face entries and the potential's terms.
+        """
         if P is None:
             P = self.pressure(U)
-        E = 0.5 * float(np.vdot(U, P))
-        G = np.multiply(P, self.cell, out=gradient_out)
-        curvature = phi = None
+        if U_face is None:
+            U_face = self.on_face(U)
+        E = 0.5 * float(np.vdot(U, P)) if total else math.nan
+        curvature = phi = stress = None
         if adhesive and self.potential is not None:
-            phi, stress, curvature = self.potential.evaluate(self.gap(U, d))
-            E += float(np.sum(phi))
-            # (P + stress) cell on the face over P cell everywhere: one pass over the padded grid
-            self.crop(G)[self.face_block] = (self.on_face(P) + stress) * self.cell
-        return self.cell * E, G, P, curvature, phi
+            phi, stress, curvature = self.potential.evaluate(U_face - (d - self.height))
+            if total:
+                E += float(np.sum(phi))
+            face_gradient = (self.on_face(P) + stress) * self.cell
+        else:
+            face_gradient = self.on_face(P) * self.cell
+        return EnergyState(self.cell * E, P, face_gradient, stress, curvature, phi)
 
     def force(self, P: np.ndarray) -> float:
         """The normal force on the punch: cell times the sum of P over the face.
