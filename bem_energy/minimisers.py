@@ -256,7 +256,7 @@ def step_energy_change(
     direction_load: float,
     direction_curvature: float,
     P: np.ndarray,
-    Pn: np.ndarray,
+    Pn: np.ndarray | None,
     clipped: np.ndarray | None,
     phi: np.ndarray | None,
     phi_n: np.ndarray | None,
@@ -284,7 +284,8 @@ def step_energy_change(
     direction_curvature : float
         direction . C^-1 direction, as the pressure that formed Pn (used without a projection).
     P, Pn : numpy.ndarray
-        The pressures before and after the step.
+        The pressures before and after the step (``Pn`` is read only with a projection, and
+        may be None without one).
     clipped : numpy.ndarray or None
         The projection's move of the face cells (face order), None when no cell was projected
         (then Pn = P + alpha C^-1 direction).
@@ -300,6 +301,7 @@ def step_energy_change(
     if clipped is None:
         change = alpha * (direction_load + 0.5 * alpha * direction_curvature)
     else:
+        assert Pn is not None  # a projection's change reads the pressure after it
         change = 0.5 * alpha * (direction_load + float(np.vdot(direction, Pn)))
         change += 0.5 * float(np.dot(clipped, prob.on_face(Pn) + prob.on_face(P)))
     if phi is not None and phi_n is not None:
@@ -389,7 +391,7 @@ def _projected_cg(
     # them anyway), and the gradient as its face entries beside P: off the face it is cell P
     U_face = np.maximum(prob.on_face(U), wall)
     U[corner][face_block] = U_face
-    E, P, G_face, stress, curvature_face, phi = prob.energy_state(U, d, adhesive, U_face=U_face)
+    E, P, P_face, G_face, stress, curvature_face, phi = prob.energy_state(U, d, adhesive, U_face=U_face)
     direction = None
     Gf_previous = None
     zg_previous = 0.0  # no previous step: the first direction is steepest descent
@@ -441,16 +443,18 @@ def _projected_cg(
         largest = _largest_magnitude(Gf) / gradient_scale
         return fixed, Gf, largest * prob.self_compliance / (prob.cell * L)
 
-    def slope(direction_double, P, stress, direction_face=None):
+    def slope_from(load, stress, direction_face):
         # the energy's slope along a direction (zero on the fixed cells), from the elastic
-        # energy's (direction . P, the direction's load) and the face's adhesive stress; and the
-        # direction's face entries, which the adhesive curvature reads
-        load = float(np.vdot(direction_double, P))
+        # energy's (direction . P, the direction's load) and the face's adhesive stress
         if stress is None:
-            return prob.cell * load, load, None
-        if direction_face is None:
-            direction_face = prob.on_face(direction_double)
-        return prob.cell * (load + float(np.dot(direction_face, stress))), load, direction_face
+            return prob.cell * load
+        return prob.cell * (load + float(np.dot(direction_face, stress)))
+
+    def slope(direction_double, P, stress):
+        # the slope, the direction's load and its face entries (the adhesive terms read them)
+        load = float(np.vdot(direction_double, P))
+        direction_face = None if stress is None else prob.on_face(direction_double)
+        return slope_from(load, stress, direction_face), load, direction_face
 
     for it in range(1, max_iterations + 1):
         at_wall_face = U_face <= wall + 1e-13 * L
@@ -463,7 +467,7 @@ def _projected_cg(
         if pg <= gtol and updated and single_precision_directions:
             # judge the minimum on the gradient computed from U in double precision (its largest
             # free entry read after rounding to the directions' precision, 6e-8 relative)
-            E, P, G_face, stress, curvature_face, phi = prob.energy_state(U, d, adhesive, U_face=U_face)
+            E, P, P_face, G_face, stress, curvature_face, phi = prob.energy_state(U, d, adhesive, U_face=U_face)
             evals += 1
             updated = False
             fixed, Gf, pg = free_gradient(P, G_face, at_wall_face)
@@ -508,12 +512,21 @@ def _projected_cg(
         # Newton step on the local quadratic model; where the adhesion makes the model concave along
         # the direction, the elastic curvature alone sets a first trial (backtracking follows)
         alpha = -gs / (prob.cell * (curvature if curvature > 0 else elastic_curvature))
+        if direction_face is None:
+            direction_face = prob.on_face(direction_double)
+        pressure_face = prob.on_face(direction_pressure)
         for halvings in range(60):  # noqa: B007  (the count is read after the loop)
-            Un = np.multiply(direction_double, alpha, out=spare_U)
-            Un += U
-            Un_face = prob.on_face(Un)
+            # the trial on the face cells first: a step that projects nothing is formed on the
+            # padded grid only once it is accepted, in place (U += alpha direction, P += alpha
+            # direction's pressure, whose face entries come out as the trial's, rounded the
+            # same way), which saves two arrays' writes and reads per iteration over forming the
+            # trial beside U and P
+            Un_face = np.multiply(direction_face, alpha)
+            Un_face += U_face
             clipped = None
             if (Un_face < wall).any():
+                Un = np.multiply(direction_double, alpha, out=spare_U)
+                Un += U
                 projected_face = np.maximum(Un_face, wall)
                 Un[corner][face_block] = projected_face
                 clipped = projected_face - Un_face  # the projection's move, on the face cells
@@ -529,15 +542,18 @@ def _projected_cg(
                     Pn = np.multiply(direction_pressure, alpha, out=spare_P)
                     Pn += P
                     Pn += prob.pressure_single(move, out=move_pressure)
+                # a pressure carried along the step, not computed from Un by energy_state, is
+                # recomputed from U before a minimum is accepted
+                Pn_updated = Pn is not None
+                _, Pn, Pn_face, Gn_face, stress_n, curvature_face_n, phi_n = prob.energy_state(
+                    Un, d, adhesive, Pn, Un_face, total=False
+                )
             else:
-                Pn = np.multiply(direction_pressure, alpha, out=spare_P)
-                Pn += P
-            # a pressure carried along the step, not computed from Un by energy_state, is
-            # recomputed from U before a minimum is accepted
-            Pn_updated = Pn is not None
-            _, Pn, Gn_face, stress_n, curvature_face_n, phi_n = prob.energy_state(
-                Un, d, adhesive, Pn, Un_face, total=False
-            )
+                Un = Pn = None
+                Pn_updated = True
+                Pn_face = np.multiply(pressure_face, alpha)
+                Pn_face += P_face
+                Gn_face, stress_n, curvature_face_n, phi_n = prob.face_terms(Un_face, Pn_face, d, adhesive)
             evals += 1
             # the step's change from the cells' changes, not the difference of two totals: they
             # carry round-off (about 1e-11 of E on a 3200^2 grid) above the decrease of a step
@@ -548,17 +564,29 @@ def _projected_cg(
             )
             if change <= 1e-4 * alpha * gs:
                 break
-            if abs(change) <= 1e-12 * abs(E) and abs(
-                slope(direction_double, Pn, stress_n, direction_face)[0]
-            ) <= 0.9 * abs(gs):
+            if abs(change) <= 1e-12 * abs(E):
                 # a change below what the totals could resolve: accept a step that flattens the
                 # slope along the direction (a Wolfe-type condition), as the totals' comparison
                 # did; it may raise the energy by at most that much
-                break
+                trial_load = (
+                    direction_load + alpha * elastic_curvature if Pn is None else float(np.vdot(direction_double, Pn))
+                )
+                if abs(slope_from(trial_load, stress_n, direction_face)) <= 0.9 * abs(gs):
+                    break
             alpha *= 0.5
         else:
             return Minimum(U, P, E, it, evals, False, pg, "line search failed")
         En = E + change
+        if Un is None or Pn is None:
+            # the accepted step projected nothing: U and P move in place, through the spare
+            # arrays (the same two roundings as the trial's face entries; BLAS axpy's single
+            # fused rounding would save a pass but change the iterates at round-off, which near
+            # a snap-off moves a range's pull-off by its path noise)
+            U += np.multiply(direction_double, alpha, out=spare_U)
+            P += np.multiply(direction_pressure, alpha, out=spare_P)
+            Un, Pn = U, P
+        else:
+            spare_U, spare_P = U, P
         # a decrease found only 2^-40 along the model step is round-off in the energy: the
         # iteration has stagnated (l_c ~ Delta near a snap took 50 evaluations per step and
         # 150,000 in one minimisation before this stop).  So has one whose projected gradient
@@ -581,17 +609,8 @@ def _projected_cg(
                 "while the projected gradient did not halve"
             )
             return Minimum(Un, Pn, En, it, evals, pg <= gtol, pg, why)
-        spare_U, spare_P = U, P
-        U, U_face, P, E, G_face, stress, curvature_face, phi = (
-            Un,
-            Un_face,
-            Pn,
-            En,
-            Gn_face,
-            stress_n,
-            curvature_face_n,
-            phi_n,
-        )
+        U, U_face, P, P_face, E = Un, Un_face, Pn, Pn_face, En
+        G_face, stress, curvature_face, phi = Gn_face, stress_n, curvature_face_n, phi_n
         updated = Pn_updated
         if stalled:
             # the directions' single-precision pressures can stall the line search at their own
@@ -602,14 +621,14 @@ def _projected_cg(
             work = _DirectionArrays(prob.padded, double_directions)
             gradient_scale = 1.0
             Gf_previous = None
-            E, P, G_face, stress, curvature_face, phi = prob.energy_state(U, d, adhesive, U_face=U_face)
+            E, P, P_face, G_face, stress, curvature_face, phi = prob.energy_state(U, d, adhesive, U_face=U_face)
             evals += 1
             updated = False
             window_steps = 0
             continue
         if it % 50 == 0:
             # refresh P from U: the incremental update accumulates round-off
-            E, P, G_face, stress, curvature_face, phi = prob.energy_state(U, d, adhesive, U_face=U_face)
+            E, P, P_face, G_face, stress, curvature_face, phi = prob.energy_state(U, d, adhesive, U_face=U_face)
             updated = False
     return Minimum(U, P, E, max_iterations, evals, False, pg, "iteration limit")
 

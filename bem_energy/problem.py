@@ -44,6 +44,8 @@ class EnergyState(NamedTuple):
         Pi(U), in physical units.
     pressure : numpy.ndarray
         C^-1 U on the padded grid.
+    face_pressure : numpy.ndarray
+        Its face entries (1-D, face order).
     face_gradient : numpy.ndarray
         dPi/dU at the face cells (1-D, face order); off the face it is cell P.
     stress : numpy.ndarray or None
@@ -56,6 +58,7 @@ class EnergyState(NamedTuple):
 
     energy: float
     pressure: np.ndarray
+    face_pressure: np.ndarray
     face_gradient: np.ndarray
     stress: np.ndarray | None
     curvature: np.ndarray | None
@@ -429,15 +432,37 @@ class EnergyProblem:
         if U_face is None:
             U_face = self.on_face(U)
         E = 0.5 * float(np.vdot(U, P)) if total else math.nan
-        curvature = phi = stress = None
+        P_face = self.on_face(P)
+        face_gradient, stress, curvature, phi = self.face_terms(U_face, P_face, d, adhesive)
+        if total and phi is not None:
+            E += float(np.sum(phi))
+        return EnergyState(self.cell * E, P, P_face, face_gradient, stress, curvature, phi)
+
+    def face_terms(self, U_face: np.ndarray, P_face: np.ndarray, d: float, adhesive: bool):
+        """The face cells' part of :meth:`energy_state`, from their own U and P.
+
+        A trial step of the projected CG forms only these before it is accepted.
+
+        Parameters
+        ----------
+        U_face, P_face : numpy.ndarray
+            The face cells' displacements and pressures (1-D, face order).
+        d : float
+            Approach of the punch.
+        adhesive : bool
+            Whether the adhesive potential is switched on.
+
+        Returns
+        -------
+        face_gradient : numpy.ndarray
+            dPi/dU at the face cells.
+        stress, curvature, phi : numpy.ndarray or None
+            phi', phi'' and phi at the face cells' gaps; None without the adhesive term.
+        """
         if adhesive and self.potential is not None:
             phi, stress, curvature = self.potential.evaluate(U_face - (d - self.height))
-            if total:
-                E += float(np.sum(phi))
-            face_gradient = (self.on_face(P) + stress) * self.cell
-        else:
-            face_gradient = self.on_face(P) * self.cell
-        return EnergyState(self.cell * E, P, face_gradient, stress, curvature, phi)
+            return (P_face + stress) * self.cell, stress, curvature, phi
+        return P_face * self.cell, None, None, None
 
     def force(self, P: np.ndarray) -> float:
         """The normal force on the punch: cell times the sum of P over the face.

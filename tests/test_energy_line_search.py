@@ -140,6 +140,6 @@ def test_round_off_in_the_total_energy_does_not_reach_the_line_search(monkeypatc
         prob, m.U, D, True, method="pk", gtol=1e-8, max_iterations=2000, single_precision_directions=single_precision
     )
     assert noisy.converged, noisy.message
-    assert len(calls) >= noisy.iterations  # every energy the minimiser read carried the error
+    assert calls  # the totals the minimiser summed its steps' changes onto carried the error
     assert noisy.iterations == clean.iterations
     assert np.array_equal(noisy.U, clean.U)
