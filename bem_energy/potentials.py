@@ -138,9 +138,13 @@ class Potential:
         """
         w, r = self.work, self.range
         if self.kind == "exponential":
-            e = np.negative(g)
-            e /= r
-            np.exp(e, out=e)
+            x = np.negative(g)
+            x /= r
+            # exp(-0) = 1 exactly: the cells at the wall (gap exactly zero, where the projection
+            # puts them) skip the exponential, a libm call of about 10 ns per cell in double
+            # precision without AVX-512, most of this function's time while the face holds
+            e = np.ones_like(x)
+            np.exp(x, out=e, where=g != 0)
             return -w * e, (w / r) * e, -(w / r**2) * e
         return self.energy(g), self.stress(g), self.curvature(g)
 

@@ -99,6 +99,10 @@ def test_potential_terms_from_one_exponential_equal_the_separate_ones(kind):
     assert np.array_equal(phi, pot.energy(g))
     assert np.array_equal(stress, pot.stress(g))
     assert np.array_equal(curvature, pot.curvature(g))
+    # cells at the wall (gap exactly zero) among detached ones, as on a face in contact
+    at_wall = np.concatenate([[0.0, 0.0], g[:5], [0.0], g[5:], [0.0]])
+    for term, separate in zip(pot.evaluate(at_wall), (pot.energy, pot.stress, pot.curvature), strict=True):
+        assert np.array_equal(term, separate(at_wall))
     h = 1e-5 * rho
     assert stress == pytest.approx((pot.energy(g + h) - pot.energy(g - h)) / (2 * h), rel=1e-8, abs=1e-9 * W / rho)
     dstress = (pot.stress(g + h) - pot.stress(g - h)) / (2 * h)
