@@ -404,25 +404,24 @@ def _projected_cg(
     # single precision (one flag decides both which transform runs and whether a stall ends)
     double_directions = not single_precision_directions
     # work arrays of the padded grid, reused across the iterations: a fresh array of a few
-    # megabytes is fresh pages from the system, whose faults cost system time.  The trial
-    # state goes into the spare U and P, which are the previous ones once a step is accepted
+    # megabytes is fresh pages from the system, whose faults cost system time.  A projected
+    # trial goes into the spare U and P, which are the previous ones once it is accepted (an
+    # unprojected one is accepted in place, through them)
     spare_U, spare_P = np.empty(prob.padded), np.empty(prob.padded)
     # a projection's move (zero off the face, where it is never written) and its pressure
     move = None if double_directions else np.zeros(prob.padded)
     move_pressure = None if double_directions else np.empty(prob.padded)
     work = _DirectionArrays(prob.padded, double_directions)
-    # single-precision directions carry the gradient times a power of two that brings the
-    # products of two single-precision arrays (zg and beta's, about C_00 times the gradient
-    # squared) near 1 at the start: in small units (nanometres and gigapascals) they would
-    # otherwise fall below float32's range.  The direction is then that power of two times the
-    # unscaled one, which the step length alpha undoes exactly (its slope and curvatures scale
-    # with it), so the iterates are those of the unscaled directions bit for bit wherever
-    # nothing underflows
-    gradient_scale = (
-        1.0
-        if double_directions
-        else _power_of_two_near_inverse(_largest_gradient(prob, P, G_face) * math.sqrt(prob.self_compliance))
-    )
+    # the directions carry the gradient times a power of two that brings the products of two
+    # single-precision arrays (zg and beta's, about C_00 times the gradient squared) and the
+    # single-precision preconditioner's image (C_00 times the gradient) near 1 at the start: in
+    # small units (nanometres and gigapascals) they would otherwise fall below float32's range
+    # (even with double-precision directions the preconditioner is a single-precision
+    # transform, and an image that underflowed to zero left no direction).  The direction is
+    # then that power of two times the unscaled one, which the step length alpha undoes exactly
+    # (its slope and curvatures scale with it), so the iterates are those of the unscaled
+    # directions bit for bit wherever nothing underflows
+    gradient_scale = _power_of_two_near_inverse(_largest_gradient(prob, P, G_face) * math.sqrt(prob.self_compliance))
     # P carries incremental updates since it was last computed from U (E always does: it is
     # summed from the steps' changes between evaluations from U)
     updated = False
@@ -619,7 +618,6 @@ def _projected_cg(
             double_directions = True
             direction = None
             work = _DirectionArrays(prob.padded, double_directions)
-            gradient_scale = 1.0
             Gf_previous = None
             E, P, P_face, G_face, stress, curvature_face, phi = prob.energy_state(U, d, adhesive, U_face=U_face)
             evals += 1

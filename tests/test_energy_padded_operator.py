@@ -85,25 +85,34 @@ def test_projected_cg_states_are_its_own_and_consistent(single):
         assert np.max(np.abs(m.P - prob.pressure(m.U))) <= 1e-9 * np.max(np.abs(m.P))
 
 
-def test_single_precision_directions_work_in_any_units():
+@pytest.mark.parametrize("single_precision", [True, False])
+def test_directions_work_in_any_units(single_precision):
     # the same dimensionless problem in units of about a nanometre and a gigapascal (or a
     # megapascal), scaled by powers of two so that every rounding scales exactly: the iterates
     # must be the same, scaled.  Without the gradient's power-of-two scaling the
     # single-precision directions' products (about C_00 times the squared gradient) fall below
     # float32's range there, and the conjugate directions degrade silently to steepest descent
-    # (more iterations, another minimum within the tolerance)
+    # (more iterations, another minimum within the tolerance); and with double-precision
+    # directions the single-precision preconditioner's image of a converging press's gradient
+    # underflowed to zero, which left no direction (a division by zero at gtol = 1e-13)
     results = {}
     for a, modulus in ((1.0, 1.0), (2.0**-30, 2.0**30), (2.0**-30, 2.0**20)):
         rho, gtol = 0.0625 * a, 1e-8
         work = 0.015625 * modulus * a
         sc = cs.Scene(cs.Indenter(cs.Circle(a)), cs.Homogeneous(modulus, 0.0), cs.Adhesion(work, rho))
         prob = be.build_problem(sc, a / 16, be.Potential(work, rho, "exponential"))
-        first = be.minimise(
-            prob, np.zeros(prob.padded), -0.0625 * a, True, method="pk", gtol=gtol, single_precision_directions=True
+        options = dict(method="pk", single_precision_directions=single_precision)
+        first = be.minimise(prob, np.zeros(prob.padded), -0.0625 * a, True, gtol=gtol, **options)
+        second = be.minimise(prob, first.U, -0.125 * a, True, gtol=gtol, **options)
+        press = be.minimise(prob, np.zeros(prob.padded), 0.05 * a, False, gtol=1e-13, **options)
+        assert first.converged and second.converged and press.converged
+        results[a, modulus] = (
+            first.iterations,
+            second.iterations,
+            press.iterations,
+            prob.force(second.P) / (modulus * a * a),
+            prob.force(press.P) / (modulus * a * a),
         )
-        second = be.minimise(prob, first.U, -0.125 * a, True, method="pk", gtol=gtol, single_precision_directions=True)
-        assert first.converged and second.converged
-        results[a, modulus] = (first.iterations, second.iterations, prob.force(second.P) / (modulus * a * a))
     reference = results[1.0, 1.0]
     for result in results.values():
         assert result == reference
