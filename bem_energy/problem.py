@@ -41,7 +41,7 @@ class EnergyState(NamedTuple):
     Attributes
     ----------
     energy : float
-        Pi(U), in physical units.
+        Pi(U), in physical units; NaN when not summed (``energy_state(..., total=False)``).
     pressure : numpy.ndarray
         C^-1 U on the padded grid.
     face_pressure : numpy.ndarray
@@ -357,8 +357,10 @@ class EnergyProblem:
     ):
         """:meth:`energy` with phi''(g) and phi(g) of each face cell, from one exponential.
 
-        The projected CG's step model needs the curvature phi'', and it sums a step's energy
-        change from the cells' phi (``bem_energy.minimisers.step_energy_change``).
+        The whole gradient on the padded grid with the face cells' phi'' and phi (a step's
+        model needs the curvature, and ``bem_energy.minimisers.step_energy_change`` sums a step's
+        energy change from the cells' phi); the projected CG itself reads the same terms from
+        :meth:`energy_state`, without the gradient's array.
 
         Parameters
         ----------

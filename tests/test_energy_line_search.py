@@ -143,3 +143,27 @@ def test_round_off_in_the_total_energy_does_not_reach_the_line_search(monkeypatc
     assert calls  # the totals the minimiser summed its steps' changes onto carried the error
     assert noisy.iterations == clean.iterations
     assert np.array_equal(noisy.U, clean.U)
+
+
+@pytest.mark.parametrize("single_precision", [False, True])
+@pytest.mark.parametrize(
+    "shape, material",
+    [(cs.Triangle.equilateral(1.0), cs.Homogeneous(1.0, 0.0)), (cs.Circle(1.0), cs.PowerLawGraded(1.0, 1.0, 0.5))],
+    ids=["triangle", "graded circle"],
+)
+def test_steps_below_the_energy_resolution_still_converge(shape, material, single_precision):
+    """A far pull (d = -0.25) converged to gtol = 1e-13: the last steps' energy changes fall
+    below what the totals resolve (1e-12 of E), where the line search accepts a step that
+    flattens the slope along the direction, judged at the trial state (the direction's load
+    plus alpha times its curvature, and the trial's adhesive stress).  Judged at the current
+    state instead, or with its stress, the step never qualifies and the minimisation ends in
+    "line search failed" short of the tolerance."""
+    w = 0.02
+    rho = range_for_process_zone(modulus=1.0, work=w, length=0.08)
+    sc = cs.Scene(cs.Indenter(shape), material, cs.Adhesion(w, rho))
+    prob = build_problem(sc, 1.0 / 16, Potential(w, rho))
+    options = dict(method="pk", single_precision_directions=single_precision)
+    pressed = mins.minimise(prob, np.zeros(prob.padded), 0.05, True, **options)
+    pulled = mins.minimise(prob, pressed.U, -0.25, True, gtol=1e-13, max_iterations=3000, **options)
+    assert pulled.converged, pulled.message
+    assert pulled.gradient <= 1e-13
