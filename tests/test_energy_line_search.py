@@ -167,3 +167,31 @@ def test_steps_below_the_energy_resolution_still_converge(shape, material, singl
     pulled = mins.minimise(prob, pressed.U, -0.25, True, gtol=1e-13, max_iterations=3000, **options)
     assert pulled.converged, pulled.message
     assert pulled.gradient <= 1e-13
+
+
+@pytest.mark.parametrize("single_precision", [False, True])
+def test_an_unfinished_minimisation_says_so(monkeypatch, attached, single_precision):
+    """A minimisation that stops short of gtol returns the state it reached, finite, marked not
+    converged with the reason: at the iteration cap, or when no step along a direction
+    lowers the energy (here every trial's energy change is made infinite)."""
+    prob, m = attached
+    options = dict(method="pk", gtol=1e-10, single_precision_directions=single_precision)
+    capped = mins.minimise(prob, m.U, D, True, max_iterations=2, **options)
+    assert capped.message == "iteration limit" and not capped.converged
+    assert capped.iterations == 2 and capped.gradient > 1e-10
+    assert np.isfinite(capped.energy) and np.all(np.isfinite(capped.U)) and np.all(np.isfinite(capped.P))
+    # the first iterate at D, where the line search then fails: the state it stopped at is
+    # the start projected onto the wall, with its exact pressure
+    monkeypatch.setattr(mins, "step_energy_change", lambda *args: math.inf)
+    failed = mins.minimise(prob, m.U, D, True, **options)
+    assert failed.message == "line search failed" and not failed.converged and failed.iterations == 1
+    start = m.U.copy()
+    start[prob.face] = np.maximum(start[prob.face], D - prob.height)
+    assert np.array_equal(failed.U, start)
+    assert np.array_equal(failed.P, prob.pressure(start))
+
+
+def test_an_unknown_minimiser_is_named(attached):
+    prob, m = attached
+    with pytest.raises(ValueError, match="'newton'"):
+        mins.minimise(prob, m.U, D, True, method="newton")
