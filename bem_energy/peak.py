@@ -218,6 +218,8 @@ def _refine_smooth_maximum(
         m = eq.minimum(start, x, True)
         F_x = eq.force(m)
         extra.append((float(x), F_x, eq.contact_area(m, x)))
+        if path.callback is not None:  # a point of the curve (placed in loading order below)
+            path.callback(*extra[-1])
         return F_x
 
     r = optimize.minimize_scalar(force_at, bounds=(lower_d, upper_d), method="bounded", options={"xatol": xatol})

@@ -262,3 +262,33 @@ def test_press_to_force_matches_hertz():
     assert errors[1] <= errors[0] / 4 + 1e-6
     # the stiffness converges at least at first order (-0.34 %, -0.11 %, +0.02 % at 24, 48, 96)
     assert stiffness_errors[1] <= stiffness_errors[0] / 2
+
+
+def test_snapshots_fields_and_progress_callback():
+    """Snapshots at the approaches asked for, each a state of the curve; fields only when asked,
+    and then the pressure sums over the face to the snapshot's force and the face's cells in
+    contact sit on the punch (u = d for a flat face).  The progress callback sees every point of
+    the curve, the force maximum's Brent trials included."""
+    sc = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0, 0.4))
+    st = be.EnergySettings(grid=cs.Grid(elements_per_radius=16))
+    plain = be.pull_off(sc, st)
+    wanted = (0.5 * plain.pulloff_approach, 0.9 * plain.pulloff_approach)
+    seen: list[tuple[float, float, float]] = []
+    for fields in (True, False):
+        seen.clear()
+        outputs = cs.Outputs(snapshots=wanted, fields=fields)
+        r = be.pull_off(dataclasses.replace(sc, outputs=outputs), st, callback=lambda *point: seen.append(point))
+        assert r.converged, r.messages
+        curve = list(zip(r.curve.approach, r.curve.force, r.curve.contact_area, strict=True))
+        assert sorted(seen) == sorted(curve)
+        assert [s.approach for s in r.snapshots] == list(wanted)
+        for s in r.snapshots:
+            assert (s.approach, s.force) in [(d, F) for d, F, _ in curve]
+            assert 0 < s.contact.sum() <= cs.rasterise(cs.Circle(1.0), s.spacing).mask.sum()
+            if not fields:
+                assert s.pressure is None and s.displacement is None
+                continue
+            assert s.pressure is not None and s.displacement is not None
+            face = cs.rasterise(cs.Circle(1.0), s.spacing).mask
+            assert float(s.pressure[face].sum()) * s.spacing**2 == pytest.approx(s.force, rel=1e-12)
+            assert np.array_equal(s.displacement[s.contact], np.full(int(s.contact.sum()), s.approach))
