@@ -488,3 +488,17 @@ def test_periodic_punch_array_matches_the_lattice_correction():
         rate = -np.polyfit(np.log(Ls), np.log(errs), 1)[0]
         assert rate >= 2.7, (errs, rate)  # at least (a/L)^3
     assert max(dK[-1], dF[-1]) < 1e-2
+
+
+def test_progress_callback_sees_every_point_of_the_curve():
+    """Through turning points (unload and reload) to detachment: every curve point reaches the
+    callback, in loading order."""
+    plain = run(square_scene(), 16)
+    turn = 0.5 * (plain.pulloff_approach + plain.detachment_approach)
+    sc = dataclasses.replace(square_scene(), loading=cs.Loading(turning_points=(turn, 0.2)))
+    seen: list[tuple[float, float, float]] = []
+    r = bg.solve(
+        sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=16)), callback=lambda *point: seen.append(point)
+    )
+    assert r.converged and r.detached
+    assert seen == list(zip(r.curve.approach, r.curve.force, r.curve.contact_area, strict=True))
