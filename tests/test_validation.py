@@ -376,3 +376,34 @@ def test_a_random_value_is_refused_by_name_exactly_when_outside_its_range(case, 
         assert exc.field != name or not inside, str(exc)
     else:
         assert inside and getattr(built, attribute) == value
+
+
+@pytest.mark.parametrize(
+    "build, name",
+    [
+        (lambda: cs.Indenter("circle"), "indenter.shape"),
+        (lambda: cs.Indenter(cs.Circle(1.0), "flat"), "indenter.profile"),
+        # the face's corner at r = sqrt(2) lies outside a sphere of radius 1.4
+        (lambda: cs.Indenter(cs.Square(2.0), cs.Sphere(1.4)), "indenter.profile_radius"),
+        (lambda: cs.Loading(press_approach=0.1, press_force=1.0), "loading.press_force"),
+        (lambda: cs.Scene(cs.Circle(1.0), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0)), "indenter"),
+        (lambda: cs.Scene(cs.Indenter(cs.Circle(1.0)), 1.0, cs.Adhesion(1.0)), "material"),
+        (lambda: cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.3), 1.0), "adhesion"),
+        (
+            lambda: (
+                cs.Scene(
+                    cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, 0.5), cs.Adhesion(1.0)
+                ).effective_modulus
+            ),
+            "material",
+        ),
+    ],
+)
+def test_a_scene_of_the_wrong_parts_is_refused_by_name(build, name):
+    with pytest.raises(cs.SceneError) as caught:
+        build()
+    assert caught.value.field == name
+
+
+def test_a_sphere_just_wider_than_the_face_is_accepted():
+    cs.Indenter(cs.Square(2.0), cs.Sphere(math.sqrt(2.0) * (1 + 1e-9)))
