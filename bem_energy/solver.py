@@ -114,10 +114,11 @@ def pull_off(
         it); ``detached`` and ``detachment_approach`` (the snap-off); ``snapshots`` (each a
         continuation step of its own, so asking for them moves the steps and with them F_A, as
         a change of the step count does: by 2e-6 and 9e-6 of it with one and two snapshots on
-        a Kendall circle of 16 elements per radius); ``last_stable`` (the attached state before the snap-off); ``iterations`` and
-        ``residual`` (the worst scaled projected gradient); ``timings``; ``messages``; ``info``
-        (:class:`bem_energy.EnergyInfo`); ``stats``; ``face_area`` (the rasterised face);
-        ``discretisation = "grid"``; ``error_bars``.  ``accuracy_estimate`` is not set.
+        a Kendall circle of 16 elements per radius); ``last_stable`` (the attached state before
+        the snap-off); ``iterations`` and ``residual`` (the worst scaled projected gradient);
+        ``timings``; ``messages``; ``info`` (:class:`bem_energy.EnergyInfo`); ``stats``;
+        ``face_area`` (the rasterised face); ``discretisation = "grid"``; ``error_bars``.
+        ``accuracy_estimate`` is not set.
 
     Raises
     ------
