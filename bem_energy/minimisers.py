@@ -228,14 +228,6 @@ def _largest_magnitude(A: np.ndarray) -> float:
     return float(max(A.max(), -A.min()))
 
 
-def _largest_gradient(prob: EnergyProblem, P: np.ndarray, face_gradient: np.ndarray) -> float:
-    """max |dPi/dU| over the padded grid, from P (the gradient is cell P off the face) and the
-    face's entries."""
-    gradient = np.multiply(P, prob.cell)
-    prob.crop(gradient)[prob.face_block] = face_gradient
-    return _largest_magnitude(gradient)
-
-
 def _power_of_two_near_inverse(x: float) -> float:
     """2^-e with x = m 2^e, 1/2 <= m < 1 (so that x 2^-e lies in [1/2, 1)); 1 for x zero or not
     finite.  Multiplying by it is exact in any binary precision."""
@@ -421,7 +413,9 @@ def _projected_cg(
     # then that power of two times the unscaled one, which the step length alpha undoes exactly
     # (its slope and curvatures scale with it), so the iterates are those of the unscaled
     # directions bit for bit wherever nothing underflows
-    gradient_scale = _power_of_two_near_inverse(_largest_gradient(prob, P, G_face) * math.sqrt(prob.self_compliance))
+    gradient_scale = _power_of_two_near_inverse(
+        _largest_magnitude(prob.gradient(P, G_face)) * math.sqrt(prob.self_compliance)
+    )
     # P carries incremental updates since it was last computed from U (E always does: it is
     # summed from the steps' changes between evaluations from U)
     updated = False
@@ -435,10 +429,7 @@ def _projected_cg(
         fixed = np.zeros(face_block.shape, bool)
         fixed[face_block] = fixed_face
         Gf = work.gradients[0] if work.gradients[0] is not Gf_previous else work.gradients[1]
-        np.multiply(P, prob.cell * gradient_scale, out=Gf, casting="same_kind")
-        scaled_face = G_face * gradient_scale
-        scaled_face[fixed_face] = 0.0
-        Gf[corner][face_block] = scaled_face
+        prob.gradient(P, np.where(fixed_face, 0.0, G_face), out=Gf, scale=gradient_scale)
         largest = _largest_magnitude(Gf) / gradient_scale
         return fixed, Gf, largest * prob.self_compliance / (prob.cell * L)
 

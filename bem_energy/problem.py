@@ -353,7 +353,6 @@ class EnergyProblem:
         d: float,
         adhesive: bool,
         P: np.ndarray | None = None,
-        gradient_out: np.ndarray | None = None,
     ):
         """:meth:`energy` with phi''(g) and phi(g) of each face cell, from one exponential.
 
@@ -372,25 +371,49 @@ class EnergyProblem:
             Whether the adhesive potential is switched on.
         P : numpy.ndarray or None, optional
             C^-1 U when already known (saves two FFTs).
-        gradient_out : numpy.ndarray or None, optional
-            A float64 array of the padded grid's shape, not ``P`` itself, to write the gradient
-            into (a new one when None).
 
         Returns
         -------
         energy, gradient, P
-            As for :meth:`energy` (the gradient in ``gradient_out`` when given).
+            As for :meth:`energy`.
         curvature : numpy.ndarray or None
             phi'' at the face cells' gaps (1-D, face order); None without the adhesive term.
         phi : numpy.ndarray or None
             phi(g) of the face cells (1-D, face order); None without the adhesive term.
         """
         state = self.energy_state(U, d, adhesive, P)
-        G = np.multiply(state.pressure, self.cell, out=gradient_out)
-        if state.stress is not None:
-            # the face's gradient over P cell everywhere: one pass over the padded grid
-            self.crop(G)[self.face_block] = state.face_gradient
+        G = self.gradient(state.pressure, state.face_gradient)
         return state.energy, G, state.pressure, state.curvature, state.phi
+
+    def gradient(
+        self, P: np.ndarray, face_gradient: np.ndarray, out: np.ndarray | None = None, scale: float = 1.0
+    ) -> np.ndarray:
+        """dPi/dU on the padded grid, times ``scale``.
+
+        It is cell P off the face, and the face cells' own entries (:meth:`energy_state`'s
+        ``face_gradient``) on it.
+
+        Parameters
+        ----------
+        P : numpy.ndarray
+            The pressures C^-1 U on the padded grid.
+        face_gradient : numpy.ndarray
+            dPi/dU at the face cells (1-D, face order).
+        out : numpy.ndarray or None, optional
+            An array of the padded grid's shape, not ``P`` itself, to write into, in double or
+            single precision (a new double-precision one when None).
+        scale : float, optional
+            A factor for the whole gradient; a power of two scales it exactly.
+
+        Returns
+        -------
+        numpy.ndarray
+            The gradient (``out`` when given).
+        """
+        G = np.multiply(P, self.cell * scale, out=out, casting="same_kind")
+        # the face's entries over cell P: one pass over the padded grid
+        self.crop(G)[self.face_block] = face_gradient * scale
+        return G
 
     def energy_state(
         self,
