@@ -8,6 +8,7 @@ prefactor 0.15 Delta/a covers the fitted 0.12 Delta/a of the same sweep.
 import dataclasses
 import math
 
+import hertz_press
 import numpy as np
 import pytest
 from square_quadrature import square_integral_reference
@@ -388,15 +389,8 @@ def test_snapshots_and_fields_only_when_asked():
 
 
 def test_press_to_force_matches_hertz():
-    R, E, F0 = 1.0, 1.0, 0.05
-    sc = cs.Scene(
-        cs.Indenter(cs.Circle(0.4), cs.Paraboloid(R)),
-        cs.Homogeneous(0.75, 0.5),
-        cs.Adhesion(0.0),
-        cs.Loading(press_force=F0),
-    )
-    d_hertz = (9 * F0**2 / (16 * R * E**2)) ** (1 / 3)
-    a_hertz = math.sqrt(R * d_hertz)
+    sc, E, F0 = hertz_press.SCENE, hertz_press.E_STAR, hertz_press.F0
+    d_hertz, a_hertz = hertz_press.APPROACH, hertz_press.CONTACT_RADIUS
     errs = []
     for N in (24, 48):
         r = bg.press(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)))

@@ -10,6 +10,7 @@ minimisers stopped at a projected gradient g agree on forces to about g relative
 import dataclasses
 import math
 
+import hertz_press
 import numpy as np
 import pytest
 
@@ -242,15 +243,8 @@ def test_press_to_force_matches_hertz():
     near 1e-6 from the tolerance at 96: at 48 it must lie below the second-order step from 24,
     8.9e-6, plus that floor); the unloading stiffness is 2 E* a within the staircase's one cell
     of radius, and converges to it."""
-    R, E, F0 = 1.0, 1.0, 0.05
-    sc = cs.Scene(
-        cs.Indenter(cs.Circle(0.4), cs.Paraboloid(R)),
-        cs.Homogeneous(0.75, 0.5),
-        cs.Adhesion(0.0),
-        cs.Loading(press_force=F0),
-    )
-    d_hertz = (9 * F0**2 / (16 * R * E**2)) ** (1 / 3)
-    a_hertz = math.sqrt(R * d_hertz)
+    sc, E, F0 = hertz_press.SCENE, hertz_press.E_STAR, hertz_press.F0
+    d_hertz, a_hertz = hertz_press.APPROACH, hertz_press.CONTACT_RADIUS
     errors, stiffness_errors = [], []
     for N in (24, 48):
         r = be.pull_off(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=N)))
