@@ -1,0 +1,98 @@
+"""The CLI's exit status is the harness's verdict for scripts and CI: 0 when every check holds,
+1 when one fails, with the failing checks named.  Each command is run in-process on a real
+solve; a check is made to fail by a wrong closed form, a wrong cached result or a wrong stored
+value, the kinds of error the harness exists to catch."""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import json
+import sys
+
+import pytest
+from click.testing import CliRunner
+
+from contact_scene import theory as T
+from crossval.cache import ResultCache
+from crossval.cli import main
+from crossval.suite import SUITE
+
+regress_module = sys.modules["crossval.regress"]  # the package's name `regress` is the function
+
+
+def _run(*args):
+    return CliRunner().invoke(main, list(args), catch_exceptions=False)
+
+
+def test_compare_exits_1_and_names_the_check_when_the_closed_form_is_wrong(monkeypatch):
+    """Kendall's force 5 % high: the Griffith and energy BEMs' pull-offs (checked against it with
+    bars of a few per cent at 12 per radius) and the FEM's (1e-5) no longer match it."""
+    ok = _run("compare", "kendall_circle", "--resolution", "12", "--quick")
+    assert ok.exit_code == 0, ok.output
+    assert "FAIL" not in ok.output
+
+    kendall = T.kendall_adhesion_force
+    monkeypatch.setattr(T, "kendall_adhesion_force", lambda **kw: 1.05 * kendall(**kw))
+    bad = _run("compare", "kendall_circle", "--resolution", "12", "--quick")
+    assert bad.exit_code == 1, bad.output
+    failed = [line for line in bad.output.splitlines() if line.startswith("FAIL")]
+    assert any("fem_reference" in line and "Kendall" in line for line in failed), bad.output
+
+
+@pytest.fixture
+def one_scene_report(monkeypatch):
+    """``crossval report`` restricted to Kendall's circle (the suite's cheapest scene)."""
+    report_module = sys.modules["crossval.report"]
+    monkeypatch.setattr(report_module, "report", functools.partial(report_module.report, scenes=["kendall_circle"]))
+    monkeypatch.setattr("crossval.cli.SUITE", {"kendall_circle": SUITE["kendall_circle"]})
+    return report_module
+
+
+def test_report_exits_1_and_names_a_failed_check(tmp_path, monkeypatch, one_scene_report):
+    """A passing quick report exits 0; the same report over a cache whose energy-BEM result has a
+    pull-off force 20 % off exits 1 and names the failed checks."""
+    monkeypatch.chdir(tmp_path)
+    ok = _run("report", "--quick", "--out", "first", "--workers", "1")
+    assert ok.exit_code == 0, ok.output
+    assert ", 0 failed," in ok.output and "FAIL" not in ok.output
+    assert json.loads((tmp_path / "first" / "results.json").read_text())["passed"] is True
+
+    scene = SUITE["kendall_circle"]
+    cache = ResultCache(tmp_path / ".crossval-cache")
+    key = ResultCache.key(scene, "bem_energy", one_scene_report.QUICK["bem_energy"][-1])
+    stored = cache.get(key)
+    assert stored is not None, "the report did not cache its finest energy-BEM result"
+    cache.put(key, dataclasses.replace(stored, pulloff_force=1.2 * stored.pulloff_force))
+
+    bad = _run("report", "--quick", "--out", "second", "--workers", "1")
+    assert bad.exit_code == 1, bad.output
+    failed = [line for line in bad.output.splitlines() if line.startswith("FAIL kendall_circle:")]
+    assert failed and all("bem_energy" in line for line in failed), bad.output
+    assert ", 0 failed," not in bad.output
+    assert json.loads((tmp_path / "second" / "results.json").read_text())["passed"] is False
+
+
+def test_regress_writes_passes_and_exits_1_on_a_changed_value(tmp_path, monkeypatch):
+    """``--update`` writes the store, a rerun matches it (exit 0), and a stored pull-off force
+    0.1 % off is a mismatch (exit 1) named by case and quantity.  One case (the Griffith BEM on
+    Kendall's circle) stands for the whole store."""
+    jobs = [j for j in regress_module._jobs() if j.scene.name == SUITE["kendall_circle"].name]
+    jobs = [j for j in jobs if j.method == "bem_griffith"]
+    assert len(jobs) == 1
+    monkeypatch.setattr(regress_module, "_jobs", lambda: jobs)
+    store = tmp_path / "regression.json"
+    monkeypatch.setattr(regress_module, "REFERENCE_FILE", store)
+
+    written = _run("regress", "--update", "--workers", "1")
+    assert written.exit_code == 0 and str(store) in written.output, written.output
+    ok = _run("regress", "--workers", "1")
+    assert ok.exit_code == 0 and "0 mismatches" in ok.output, ok.output
+
+    data = json.loads(store.read_text())
+    data["cases"][0]["values"]["pulloff_force"] *= 1.001
+    store.write_text(json.dumps(data))
+    bad = _run("regress", "--workers", "1")
+    assert bad.exit_code == 1, bad.output
+    (line,) = [line for line in bad.output.splitlines() if line.startswith("MISMATCH")]
+    assert "bem_griffith" in line and "pulloff_force" in line and "1 mismatches" in bad.output
