@@ -107,7 +107,7 @@ class EnergySettings:
         (``bem_energy.peak.locate_snap_off``).  Brent's tolerance on a smooth maximum becomes
         the distance at which the parabola through the maximum's bracket loses this fraction,
         where that is the larger.  A tension that does not flatten, as toward a fold, is
-        bisected to ``snap_tolerance`` as before.  None (the default): the approach tolerance
+        bisected to ``snap_tolerance``.  None (the default): the approach tolerance
         only.
 
     Raises
