@@ -35,7 +35,8 @@ k = 0.9 and 0.95 the pressure is nearly uniform (edge exponent (k - 1)/2 = -0.05
 and the graded circle's own F_A / F_A(Eq. 39) stays within 0.1 % from 45 to 181 per radius,
 so the ratio there carries the homogeneous circle's staircase jitter (+-0.2 %): the c/N fit
 leaves residuals of 0.24 % and 0.27 %, which u contains.  Off the sweep (40 and 56 per
-radius) the ratio stays within u of the fit at all four |k| >= 0.9 (tested at +-0.9 and +-0.95).
+radius) the ratio stays within u of the fit at all four |k| >= 0.9 (tested at 40 and 56 for
+k = -0.9, 0.9, 0.95, at 56 only for k = -0.95, where 40 sits 0.6 % above the fit).
 """
 
 from __future__ import annotations

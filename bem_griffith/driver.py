@@ -9,8 +9,8 @@ State and rules (theory sheet, section 3)
   (within ``tie_tolerance`` of the largest, for round-off) leaves at once, then the set is
   re-solved at the same approach and the pass repeats until no element exceeds sigma_c.
   This is the paper's rule; it keeps symmetric partners together and makes the result
-  independent of element ordering.  Detaching one element at a time would only reorder a
-  cascade that runs to the same stable set in all the cases tested, at many more solves.
+  independent of element ordering.  Detaching one element at a time would be another rule,
+  at many more solves.
 
 Between events the contact set is fixed and the state is linear in the approach
 (``bem_griffith.contact_set``), so the event driver computes the next approach at which an

@@ -81,6 +81,7 @@ def test_calibration_only_rescales(k):
     b = bg.solve(tri, st)
     r, _ = calibration(k)
     assert np.array_equal(a.curve.contact_area, b.curve.contact_area)
+    assert np.array_equal(a.last_stable.contact, b.last_stable.contact)
     assert np.allclose(b.curve.force * r, a.curve.force, rtol=1e-9, atol=1e-12 * np.abs(a.curve.force).max())
     assert b.info["graded_criterion"] == "calibrated" and any("calibrated" in m for m in b.messages)
 

@@ -92,6 +92,7 @@ def test_elongated_faces_get_a_positive_preconditioner_and_the_same_answer():
     a, b = run(sc, 12), run(sc, 12, preconditioner="none")
     assert a.pulloff_force == pytest.approx(b.pulloff_force, rel=1e-8)
     assert np.array_equal(a.curve.contact_area, b.curve.contact_area)
+    assert np.array_equal(a.last_stable.contact, b.last_stable.contact)
 
 
 # -- the operator -----------------------------------------------------------

@@ -18,10 +18,13 @@ def circle(material, work=1.0, **kw):
 
 @pytest.mark.parametrize("nu", [0.49, 0.499, 0.4999, 0.5])
 def test_fem_does_not_lock_as_nu_tends_to_half(nu):
-    # displacement-only linear elements lock here; the mixed form stays on Kendall (Eq. 1)
+    # displacement-only linear elements lock here; the mixed form stays on Kendall (Eqs. 1, 6, 4)
     mat = cs.Homogeneous(1.0, nu)
     r = fr.solve(circle(mat), fr.FemSettings(grading=2.0))
-    assert r.stiffness == pytest.approx(T.kendall_stiffness(E_star=mat.effective_modulus, radius=1.0), rel=1e-4)
+    E = mat.effective_modulus
+    assert r.stiffness == pytest.approx(T.kendall_stiffness(E_star=E, radius=1.0), rel=1e-4)
+    assert r.pulloff_force == pytest.approx(T.kendall_adhesion_force(E_star=E, radius=1.0, work=1.0), rel=1e-4)
+    assert r.pulloff_approach == pytest.approx(T.kendall_critical_approach(E_star=E, radius=1.0, work=1.0), rel=1e-4)
 
 
 @pytest.mark.parametrize("k", [0.9, 0.95, -0.9, -0.95])

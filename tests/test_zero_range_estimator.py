@@ -136,9 +136,10 @@ def test_the_estimate_covers_the_error_in_every_window(rows, record_property):
 
 
 def test_half_the_estimate_does_not_cover_it(rows):
-    """The bound is not loose by an arbitrary factor: a mutant returning half of it fails."""
+    """The bound is not loose by an arbitrary factor: half of it leaves the error uncovered in
+    at least half of the windows (43 of 78 on the stored study, mostly the cornered faces')."""
     _, fails = _report(rows, scale=0.5)
-    assert fails
+    assert 2 * len(fails) >= len(rows), (len(fails), len(rows))
 
 
 def test_the_circles_tail_rate_lies_in_the_bracket(seqs):
