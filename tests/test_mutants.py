@@ -121,9 +121,10 @@ def test_paraboloid_of_half_the_radius_fails_the_jkr_pulloff(monkeypatch):
     assert not bad.passed
 
 
-def _mutated_module(monkeypatch, path: str, package: str, old: str, new: str) -> dict:
+def _mutated_module(monkeypatch, path: str, package: str, old: str, new: str, count: int = 1) -> dict:
     """The namespace of ``path`` executed with ``old`` replaced by ``new`` (the mutation study's
-    text substitution, in memory), registered as a module while the test runs."""
+    text substitution, in memory; ``old`` must occur ``count`` times), registered as a module
+    while the test runs."""
     import sys
     import types
     from pathlib import Path
@@ -131,7 +132,7 @@ def _mutated_module(monkeypatch, path: str, package: str, old: str, new: str) ->
     import contact_scene
 
     src = (Path(contact_scene.__file__).parents[1] / path).read_text()
-    assert src.count(old) == 1
+    assert src.count(old) == count
     mod = types.ModuleType(f"{package}._mutant")
     mod.__package__ = package
     monkeypatch.setitem(sys.modules, mod.__name__, mod)
@@ -194,3 +195,97 @@ def test_a_rate_bracket_without_the_smooth_edge_fails_kendalls_bracket():
     }
     assert bad["pulloff_force"].passed  # the symmetric bar alone does not see it
     assert not bad["pulloff_force bracket"].passed
+
+
+def test_effective_modulus_over_one_minus_nu_fails_the_fem_against_kendall(monkeypatch):
+    """Mutant M1: E* = E / (1 - nu) instead of E / (1 - nu^2), everywhere at once: both BEMs
+    and every closed form move together, so only a method that reads E and nu itself can tell.
+    The FEM does (its body is E, nu): at nu = 0.3 Kendall's stiffness moves by +30 %.
+    Caught by: the FEM's checks against Eqs. 1 and 6."""
+    import fem_reference as fr
+
+    sc = SUITE["kendall_circle"]
+    r = fr.solve(sc, fr.FemSettings(grading=2.0, order=3))
+    ok = _checks(sc, {"fem_reference": r})
+    assert ok[("fem_reference", "stiffness")].passed and ok[("fem_reference", "pulloff_force")].passed
+    monkeypatch.setattr(
+        cs.Homogeneous, "effective_modulus", property(lambda self: self.youngs_modulus / (1.0 - self.poisson_ratio))
+    )
+    bad = _checks(sc, {"fem_reference": r})
+    assert bad[("fem_reference", "stiffness")].difference == pytest.approx(0.7 / 0.91 - 1, abs=1e-3)
+    assert not bad[("fem_reference", "stiffness")].passed
+    assert not bad[("fem_reference", "pulloff_force")].passed
+
+
+def test_kendalls_force_with_2_pi_fails_the_griffith_pulloff(monkeypatch):
+    """Mutant T1: Eq. 6 as sqrt(2 pi E* w a^3), the closed form halved.
+    Caught by: the Griffith BEM's pull-off check against Kendall."""
+    sc = SUITE["kendall_circle"]
+    r = _griffith(sc, 16)
+    assert _checks(sc, {"bem_griffith": r})[("bem_griffith", "pulloff_force")].passed
+    monkeypatch.setattr(
+        T, "kendall_adhesion_force", lambda *, E_star, radius, work: math.sqrt(2 * math.pi * E_star * work * radius**3)
+    )
+    bad = _checks(sc, {"bem_griffith": r})[("bem_griffith", "pulloff_force")]
+    assert bad.difference == pytest.approx(1.0, abs=0.05) and not bad.passed
+
+
+def test_fem_stiffness_without_the_radius_fails_the_radius_2_circle(monkeypatch):
+    """Mutant F5: the FEM's K = E K^ instead of E a K^ (right for a = 1 only).  The suite's
+    incompressible circle has a = 2, so its stiffness halves.
+    Caught by: the FEM's stiffness check against Eq. 1 on that scene."""
+    import fem_reference.solver as fs
+
+    sc = SUITE["incompressible_circle"]
+    settings = fs.FemSettings(grading=2.0, order=3)
+    assert _checks(sc, {"fem_reference": fs.solve(sc, settings)})[("fem_reference", "stiffness")].passed
+    ns = _mutated_module(
+        monkeypatch,
+        "fem_reference/solver.py",
+        "fem_reference",
+        "K = modulus_scale * a * u.stiffness",
+        "K = modulus_scale * u.stiffness",
+    )
+    bad = _checks(sc, {"fem_reference": ns["solve"](sc, settings)})[("fem_reference", "stiffness")]
+    assert bad.difference == pytest.approx(-0.5, abs=1e-3) and not bad.passed
+
+
+def test_the_pulloff_read_as_the_largest_absolute_force_fails_the_jkr_sphere(monkeypatch):
+    """Mutant S1: the Griffith BEM's pull-off as the largest abs(F) of the curve, compressive or
+    tensile.  The suite's sphere is pressed before it is pulled, harder than it adheres.
+    Caught by: the pull-off check against JKR (1.5 pi w R)."""
+    import bem_griffith.solver as gs
+
+    sc = SUITE["jkr_sphere"]
+    assert _checks(sc, {"bem_griffith": _griffith(sc, 16)})[("bem_griffith", "pulloff_force")].passed
+    ns = _mutated_module(
+        monkeypatch, "bem_griffith/result.py", "bem_griffith", "tensile = -curve.force", "tensile = np.abs(curve.force)"
+    )
+    monkeypatch.setattr(gs, "assemble_result", ns["assemble_result"])
+    bad = _checks(sc, {"bem_griffith": _griffith(sc, 16)})[("bem_griffith", "pulloff_force")]
+    assert not bad.passed
+
+
+def test_a_potential_of_half_the_work_fails_the_energy_pulloff(monkeypatch):
+    """Mutant E1: the adhesive potential's depth w / 2 (surface energy taken for the work of
+    adhesion w = 2 gamma), in its energy, stress and curvature alike: the zero-range pull-off
+    falls by about sqrt(2), to 0.67 of itself on the quick report's coarse sequence (whose
+    ranges are still sized for w, so each process zone is twice as long).  Caught by: the
+    energy BEM's pull-off check against Kendall."""
+    import bem_energy as be
+
+    sc = SUITE["kendall_circle"]
+    ok = _checks(sc, {"bem_energy": be.solve_with_resolution(sc, 1.0)})[("bem_energy", "pulloff_force")]
+    assert ok.passed
+    ns = _mutated_module(
+        monkeypatch,
+        "bem_energy/potentials.py",
+        "bem_energy",
+        "w, r = self.work, self.range",
+        "w, r = 0.5 * self.work, self.range",
+        count=4,
+    )
+    for name in ("energy", "evaluate", "stress", "curvature"):
+        monkeypatch.setattr(be.Potential, name, ns["Potential"].__dict__[name])
+    bad = _checks(sc, {"bem_energy": be.solve_with_resolution(sc, 1.0)})[("bem_energy", "pulloff_force")]
+    assert bad.value < 0.75 * ok.value and not bad.passed
