@@ -4,7 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["plot_curve", "plot_contact", "plot_surface", "plot_error_vs_time", "plot_agreement"]
+__all__ = ["plot_curve", "plot_contact", "plot_surface", "plot_error_vs_time", "plot_agreement", "METHOD_COLOURS"]
+
+#: one colour per method, the same in every figure
+METHOD_COLOURS = {"bem_griffith": "C0", "bem_energy": "C1", "fem_reference": "C2"}
 
 
 def _axes(ax):
@@ -82,7 +85,8 @@ def _decade_limits(values):
     v = np.asarray([x for x in values if np.isfinite(x) and x > 0], float)
     if len(v) == 0:
         return 1e-3, 1.0
-    lo, hi = np.floor(np.log10(v.min())), np.ceil(np.log10(v.max()))
+    # a margin, so that no marker sits on the axis and is cut in half
+    lo, hi = np.floor(np.log10(v.min() / 1.5)), np.ceil(np.log10(v.max() * 1.5))
     if hi <= lo:
         hi = lo + 1
     return 10.0**lo, 10.0**hi
@@ -100,7 +104,9 @@ def plot_error_vs_time(study, ax=None):
     runs shorter than ``study.TIME_NOISE_FLOOR_S``, or times not growing with resolution.
 
     The error is against ``study.reference_info``; its error bar is drawn as a grey band
-    (errors inside it are not resolved and are drawn hollow).  Without a reference the panel
+    (errors inside it are not resolved and are drawn hollow).  The axis is the error's
+    magnitude; a marker points up for a run above the reference and down for one below it, so
+    that a sign change (a dip through zero) shows.  Without a reference the panel
     says so instead of plotting."""
     import textwrap
 
@@ -144,9 +150,11 @@ def plot_error_vs_time(study, ax=None):
         x = [r.wall_time_s if timed else r.resolution for r in mr]
         e = [max(r.error, 1e-12) for r in mr]
         label = m if timed else f"{m} ({_resolution_meaning(study, m)})"
-        (line,) = ax.plot(x, e, "-", lw=1, label=label)
+        (line,) = ax.plot(x, e, "-", lw=1, label=label, color=METHOD_COLOURS.get(m))
         for xi, r, ei in zip(x, mr, e, strict=True):
-            ax.plot(xi, ei, "o", color=line.get_color(), ms=5, mfc=line.get_color() if r.error > unc else "white")
+            # the axis is the magnitude: the marker says on which side of the reference the run lies
+            marker = "v" if r.signed_error < 0 else "^"
+            ax.plot(xi, ei, marker, color=line.get_color(), ms=5, mfc=line.get_color() if r.error > unc else "white")
             if not timed:
                 ax.annotate(
                     f"{r.wall_time_s:.2g} s",
@@ -187,7 +195,14 @@ def plot_error_vs_time(study, ax=None):
             fontsize=8,
         )
     ax.set_ylabel(f"relative error of {study.quantity}")
-    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
+    from matplotlib.lines import Line2D
+
+    handles, _ = ax.get_legend_handles_labels()
+    handles += [
+        Line2D([], [], ls="none", marker=m, color="0.3", ms=5, label=f"{side} the reference")
+        for m, side in (("^", "above"), ("v", "below"))
+    ]
+    ax.legend(handles=handles, fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     return ax
 
 

@@ -12,7 +12,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from . import plotting
+from contact_scene import rasterise
+
+from . import face_references, plotting
 from .cache import ResultCache, package_version
 from .compare import check_results, reference_values, same_grid_partners
 from .jsonio import dumps as json_dumps
@@ -102,10 +104,21 @@ def _png(fig, path: Path) -> str:
     return base64.b64encode(data).decode()
 
 
+def _curve_label(method: str, r) -> str:
+    """The legend entry of a force-approach curve: the energy BEM's zero-range result carries
+    the curve of its finest range, whose force maximum is below the extrapolated F_A."""
+    if isinstance(r.info, dict) and "zero_range" in r.info:
+        return f"{method} (its finest range; F_A is the zero-range limit)"
+    return method
+
+
 #: the line under the agreement map: what its cells and its hatched cells mean
 AGREEMENT_CAPTION = (
     "Each cell: |F_A / reference - 1| of the method's finest run, against the scene's reference "
-    "(closed form; else the FEM; else the Griffith BEM extrapolated in 1/N, 'own extrap.' on its own row). "
+    "(closed form; else, for the built-in non-circular faces, the reference table's converged value; else "
+    "the FEM; else the Griffith BEM extrapolated in 1/N). 'own extrap.' and 'own table value': the reference "
+    "is that method's own converged value, so the cell is its convergence error, not an agreement between "
+    "methods. "
     "'calib.': a calibration residual, matching by construction; '< ref. error bar': the difference is "
     "smaller than the reference's own error bar, so not resolved. Hatched cells have no value: "
     + "; ".join(f"'{k}' = {v}" for k, v in plotting.BLANK_REASONS.items())
@@ -134,7 +147,16 @@ def _agreement_row(scene, st, fin, checks, methods):
             row.append(v)
             calib = any(c.method == m and c.quantity == "pulloff_force" and c.role == "calibration" for c in checks)
             own = ref.own_sequence and m == ref.own_method
-            tags = ["calib."] * calib + ["own extrap."] * own + ["< ref. error bar"] * (v <= ref.uncertainty)
+            # the table's value is one method's own converged value: that method's cell is its
+            # convergence error, not an agreement with another method
+            table = face_references.for_scene(scene).get("pulloff_force") if ref.kind == "table" else None
+            own_table = table is not None and table.method == m
+            tags = (
+                ["calib."] * calib
+                + ["own extrap."] * own
+                + ["own table value"] * own_table
+                + ["< ref. error bar"] * (v <= ref.uncertainty)
+            )
             note.append("\n".join(tags))
     return row, note
 
@@ -271,18 +293,28 @@ def report(
         st = studies[s]
         fig, axs = plt.subplots(1, 3, figsize=(15, 4.2), layout="constrained", width_ratios=(1.1, 0.8, 1.25))
         for m, r in finest[s].items():
-            if r.curve is not None:
-                plotting.plot_curve(r, axs[0], label=f"{m}")
+            # the same-grid runs without adhesion (keys beyond the methods) have no pull
+            if r.curve is not None and m in METHODS:
+                plotting.plot_curve(r, axs[0], label=_curve_label(m, r), color=plotting.METHOD_COLOURS.get(m))
         th = reference_values(SUITE[s])
         if "pulloff_force" in th:
-            axs[0].axhline(-th["pulloff_force"], color="grey", lw=0.6, ls=":", label=th["source"])
+            source = th.get("sources", {}).get("pulloff_force", th["source"]).split(" (")[0]
+            axs[0].axhline(-th["pulloff_force"], color="grey", lw=0.6, ls=":", label=f"-F_A: {source}")
         axs[0].legend(fontsize=7)
-        axs[0].set_title(s)
+        axs[0].set_title(f"{s} (tension F < 0)")
         # the last stable contact of the first method that recorded one (a grid method's)
-        bem = next((r for r in finest[s].values() if r.last_stable is not None), None)
+        m_bem, bem = next(((m, r) for m, r in finest[s].items() if r.last_stable is not None), (None, None))
         if bem is not None:
-            plotting.plot_contact(bem.last_stable, axs[1])
-            axs[1].set_title("last stable contact (BEM)", fontsize=9)
+            face = rasterise(SUITE[s].indenter.shape, bem.last_stable.spacing).mask
+            same = face.shape == bem.last_stable.contact.shape
+            plotting.plot_contact(bem.last_stable, axs[1], face=face if same else None)
+            axs[1].set_title(
+                f"last stable contact, {m_bem}, d = {bem.last_stable.approach:.4g}"
+                + ("\n(grey: the face, black: in contact)" if same else ""),
+                fontsize=9,
+            )
+            axs[1].set_xlabel("x")
+            axs[1].set_ylabel("y")
         else:
             axs[1].axis("off")
         plotting.plot_error_vs_time(st, axs[2])

@@ -117,6 +117,10 @@ def test_blank_cells_of_the_agreement_map_are_explained(rendered):
     assert math.isnan(row[j]) and notes[j] == "n/a"
     # measured against the reference table, not against its own extrapolated sequence
     assert "own extrap." not in notes[list(METHODS).index("bem_griffith")]
+    # the table's square force is the energy BEM's own converged value: its cell says so, so that
+    # its convergence error is not read as a disagreement between methods
+    assert "own table value" in notes[list(METHODS).index("bem_energy")]
+    assert "own table value" not in notes[list(METHODS).index("bem_griffith")]
 
 
 @pytest.mark.skipif(shutil.which("chromium") is None, reason="chromium is not installed")
@@ -279,4 +283,29 @@ def test_error_panel_labels_its_axes_and_its_legend_hides_no_point(times):
     points = ax.transData.transform([(line.get_xdata()[0], line.get_ydata()[0]) for line in ax.lines])
     assert not any(legend.contains(x, y) for x, y in points)
     assert not legend.overlaps(ax.get_window_extent())
+    plt.close(fig)
+
+
+def test_error_panel_shows_on_which_side_of_the_reference_each_run_lies():
+    """The axis is the error's magnitude; a run below the reference points down, one above
+    points up, so that errors crossing zero (a dip on the log axis) are told apart from
+    errors that fall."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from crossval import plotting
+    from crossval.study import ErrorReference, Study, StudyRow
+    from crossval.suite import SUITE
+
+    ref = ErrorReference(1.0, "Kendall", "closed form")
+    signed = (0.03, -0.002, 0.004)
+    rows = tuple(StudyRow("bem_griffith", n, 0.1, 1 + e, abs(e), e) for n, e in zip((8, 12, 16), signed, strict=True))
+    st = Study(SUITE["kendall_circle"], "pulloff_force", 1.0, ref.name, rows, reference_info=ref)
+    fig, ax = plt.subplots()
+    plotting.plot_error_vs_time(st, ax)
+    drawn = {float(line.get_xdata()[0]): line.get_marker() for line in ax.lines if len(line.get_xdata()) == 1}
+    assert drawn == {8.0: "^", 12.0: "v", 16.0: "^"}
+    assert {"above the reference", "below the reference"} <= {t.get_text() for t in ax.get_legend().get_texts()}
     plt.close(fig)
