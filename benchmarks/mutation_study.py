@@ -149,14 +149,14 @@ MUTANTS: tuple[Mutant, ...] = (
         "w, r = 0.5 * self.work, self.range",
         "the adhesive potential's depth is w/2 (surface energy gamma confused with the work of adhesion "
         "w = 2 gamma), energy, stress and curvature alike: pull-off x 0.71",
-        count=3,
+        count=4,
     ),
     Mutant(
         "E2-range-for-process-zone",
         "bem_energy",
         "bem_energy/potentials.py",
-        "return math.sqrt(work * length ** (1.0 - exponent) / modulus)",
-        "return math.sqrt(work * length ** (1.0 - exponent) / (2.0 * modulus))",
+        "return math.sqrt(work * length ** (1.0 - exponent) / (process_zone_factor(exponent) * modulus))",
+        "return math.sqrt(work * length ** (1.0 - exponent) / (2.0 * process_zone_factor(exponent) * modulus))",
         "the range chosen for a process zone too short by sqrt(2): each range's true l_c is half the "
         "one its grid was sized for, so the zone is trapped by the mesh",
     ),
@@ -164,8 +164,8 @@ MUTANTS: tuple[Mutant, ...] = (
         "E3-process-zone-length",
         "bem_energy",
         "bem_energy/potentials.py",
-        "return (modulus * range**2 / work) ** (1.0 / (1.0 - exponent))",
-        "return (2.0 * modulus * range**2 / work) ** (1.0 / (1.0 - exponent))",
+        "return (process_zone_factor(exponent) * modulus * range**2 / work) ** (1.0 / (1.0 - exponent))",
+        "return (2.0 * process_zone_factor(exponent) * modulus * range**2 / work) ** (1.0 / (1.0 - exponent))",
         "l_c = 2 E* rho^2 / w: the resolution guard believes every zone twice as well resolved as it is",
     ),
     Mutant(
