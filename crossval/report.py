@@ -320,15 +320,23 @@ def report(
         plotting.plot_error_vs_time(st, axs[2])
         img = _png(fig, out / f"{s}.png")
         rows = "".join(
-            f"<tr><td>{html.escape(m)}</td><td>{r.pulloff_force:.6g}</td><td>{r.pulloff_approach:.6g}</td>"
-            f"<td>{r.stiffness:.6g}</td><td>{r.curve.contact_area[0] if r.curve is not None else float('nan'):.4g}</td>"
+            f"<tr><td>{html.escape(m)}</td>"
+            # the same-grid runs without adhesion (keys beyond the methods) are pressed only
+            + (
+                f"<td>{r.pulloff_force:.6g}</td><td>{r.pulloff_approach:.6g}</td>"
+                if m in METHODS
+                else "<td>- (w = 0)</td><td>-</td>"
+            )
+            + f"<td>{r.stiffness:.6g}</td>"
+            f"<td>{r.curve.contact_area[0] if r.curve is not None else float('nan'):.4g}</td>"
             f"<td>{r.wall_time_s:.2f}</td><td>{r.converged}</td></tr>"
             for m, r in finest[s].items()
         )
+        # a quantity from the reference table names it: it is a converged number, not a closed form
         theory_rows = "".join(
             f"<tr><td>{html.escape(k)}</td><td>{v:.6g}"
             + (f" &plusmn; {th['bars'][k]:.2%}" if k in th.get("bars", {}) else "")
-            + "</td></tr>"
+            + f"</td><td>{html.escape(th.get('sources', {}).get(k, th.get('source', '')))}</td></tr>"
             for k, v in th.items()
             if isinstance(v, float)
         )
@@ -342,7 +350,7 @@ def report(
             f"<h2 id='{s}'>{html.escape(s)}</h2><table><tr><th>method</th><th>F_A</th><th>d at F_A</th>"
             f"<th>stiffness</th>"
             f"<th>initial area</th><th>wall s</th><th>converged</th></tr>{rows}</table>"
-            f"<p>Theory ({html.escape(th.get('source', 'none'))}):</p><table>{theory_rows}</table>"
+            f"<p>Theory and reference values:</p><table>{theory_rows}</table>"
             f"<p>{html.escape(_error_sentence(st))}</p>"
             f"<ul>{chk}</ul><ul>{notes_html}</ul><img src='data:image/png;base64,{img}' alt='{html.escape(s)}'>"
         )

@@ -309,3 +309,16 @@ def test_error_panel_shows_on_which_side_of_the_reference_each_run_lies():
     assert drawn == {8.0: "^", 12.0: "v", 16.0: "^"}
     assert {"above the reference", "below the reference"} <= {t.get_text() for t in ax.get_legend().get_texts()}
     plt.close(fig)
+
+
+def test_scene_tables_name_each_reference_value_and_show_no_pull_off_for_a_press(rendered):
+    """A value from the reference table is named as such (a converged number with a bar, not a
+    closed form beside the bounds), and a same-grid run without adhesion shows no pull-off."""
+    _, out = rendered
+    page = html.unescape((out / "index.html").read_text())
+    square = page[page.index("id='square'") :]
+    square = square[: square.index("<img")]
+    assert re.search(r"<td>pulloff_force</td><td>[\d.]+ ± [\d.]+%</td><td>reference table, square: bem_", square)
+    assert "<td>upper_force</td>" in square and "bounds (Eqs. 13, 18)" in square
+    presses = re.findall(r"<tr><td>[^<]*\(w = 0\)</td>.*?</tr>", square)
+    assert presses and all("<td>- (w = 0)</td><td>-</td>" in row for row in presses)
