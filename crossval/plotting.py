@@ -98,7 +98,7 @@ def _resolution_meaning(study, method) -> str:
     return METHODS[method].resolution(study.scene).label
 
 
-def plot_error_vs_time(study, ax=None):
+def plot_error_vs_time(study, ax=None, *, notes=None):
     """One line per method: the relative error of the studied quantity against wall time, or
     against resolution with each run's time written next to it when the timings mean nothing:
     runs shorter than ``study.TIME_NOISE_FLOOR_S``, or times not growing with resolution.
@@ -106,7 +106,8 @@ def plot_error_vs_time(study, ax=None):
     The error is against ``study.reference_info``; its error bar is drawn as a grey band
     (errors inside it are not resolved and are drawn hollow).  The axis is the error's
     magnitude; a marker points up for a run above the reference and down for one below it, so
-    that a sign change (a dip through zero) shows.  Without a reference the panel
+    that a sign change (a dip through zero) shows.  ``notes`` ({method: text}) adds a word to a
+    method's legend entry, e.g. that its errors are calibration residuals.  Without a reference the panel
     says so instead of plotting."""
     import textwrap
 
@@ -150,6 +151,8 @@ def plot_error_vs_time(study, ax=None):
         x = [r.wall_time_s if timed else r.resolution for r in mr]
         e = [max(r.error, 1e-12) for r in mr]
         label = m if timed else f"{m} ({_resolution_meaning(study, m)})"
+        if notes and notes.get(m):
+            label += f"; {notes[m]}"
         (line,) = ax.plot(x, e, "-", lw=1, label=label, color=METHOD_COLOURS.get(m))
         for xi, r, ei in zip(x, mr, e, strict=True):
             # the axis is the magnitude: the marker says on which side of the reference the run lies

@@ -298,7 +298,7 @@ def report(
                 plotting.plot_curve(r, axs[0], label=_curve_label(m, r), color=plotting.METHOD_COLOURS.get(m))
         th = reference_values(SUITE[s])
         if "pulloff_force" in th:
-            source = th.get("sources", {}).get("pulloff_force", th["source"]).split(" (")[0]
+            source = th.get("sources", {}).get("pulloff_force", th["source"]).split(" (crossval")[0]
             axs[0].axhline(-th["pulloff_force"], color="grey", lw=0.6, ls=":", label=f"-F_A: {source}")
         axs[0].legend(fontsize=7)
         axs[0].set_title(f"{s} (tension F < 0)")
@@ -317,7 +317,13 @@ def report(
             axs[1].set_ylabel("y")
         else:
             axs[1].axis("off")
-        plotting.plot_error_vs_time(st, axs[2])
+        # a method fitted to the reference here (the graded criterion's calibration) says so
+        calibrated = {
+            c.method: "calibration residual"
+            for c in checks[s]
+            if c.quantity == st.quantity and c.role == "calibration" and c.method in METHODS
+        }
+        plotting.plot_error_vs_time(st, axs[2], notes=calibrated)
         img = _png(fig, out / f"{s}.png")
         rows = "".join(
             f"<tr><td>{html.escape(m)}</td>"

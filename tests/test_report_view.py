@@ -304,10 +304,12 @@ def test_error_panel_shows_on_which_side_of_the_reference_each_run_lies():
     rows = tuple(StudyRow("bem_griffith", n, 0.1, 1 + e, abs(e), e) for n, e in zip((8, 12, 16), signed, strict=True))
     st = Study(SUITE["kendall_circle"], "pulloff_force", 1.0, ref.name, rows, reference_info=ref)
     fig, ax = plt.subplots()
-    plotting.plot_error_vs_time(st, ax)
+    plotting.plot_error_vs_time(st, ax, notes={"bem_griffith": "calibration residual"})
     drawn = {float(line.get_xdata()[0]): line.get_marker() for line in ax.lines if len(line.get_xdata()) == 1}
     assert drawn == {8.0: "^", 12.0: "v", 16.0: "^"}
-    assert {"above the reference", "below the reference"} <= {t.get_text() for t in ax.get_legend().get_texts()}
+    legend = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert {"above the reference", "below the reference"} <= set(legend)
+    assert any(t.startswith("bem_griffith") and t.endswith("; calibration residual") for t in legend), legend
     plt.close(fig)
 
 
