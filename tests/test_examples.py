@@ -1,4 +1,4 @@
-"""The examples run (short versions) and say what they claim."""
+"""The examples run (at coarse settings of their own) and say what they claim."""
 
 import contact_scene as cs
 from contact_scene import theory as T
