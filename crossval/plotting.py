@@ -99,8 +99,9 @@ def _resolution_meaning(study, method) -> str:
 
 
 def plot_error_vs_time(study, ax=None, *, notes=None):
-    """One line per method: the relative error of the studied quantity against wall time, or
-    against resolution with each run's time written next to it when the timings mean nothing:
+    """One line per method: the relative error of the studied quantity against wall time, each
+    run's resolution written next to it, or against resolution with each run's time written
+    next to it when the timings mean nothing:
     runs shorter than ``study.TIME_NOISE_FLOOR_S``, or times not growing with resolution.
 
     The error is against ``study.reference_info``; its error bar is drawn as a grey band
@@ -150,7 +151,7 @@ def plot_error_vs_time(study, ax=None, *, notes=None):
     for m, mr in by_method.items():
         x = [r.wall_time_s if timed else r.resolution for r in mr]
         e = [max(r.error, 1e-12) for r in mr]
-        label = m if timed else f"{m} ({_resolution_meaning(study, m)})"
+        label = f"{m} ({_resolution_meaning(study, m)})"
         if notes and notes.get(m):
             label += f"; {notes[m]}"
         (line,) = ax.plot(x, e, "-", lw=1, label=label, color=METHOD_COLOURS.get(m))
@@ -158,15 +159,15 @@ def plot_error_vs_time(study, ax=None, *, notes=None):
             # the axis is the magnitude: the marker says on which side of the reference the run lies
             marker = "v" if r.signed_error < 0 else "^"
             ax.plot(xi, ei, marker, color=line.get_color(), ms=5, mfc=line.get_color() if r.error > unc else "white")
-            if not timed:
-                ax.annotate(
-                    f"{r.wall_time_s:.2g} s",
-                    (xi, ei),
-                    textcoords="offset points",
-                    xytext=(4, 3),
-                    fontsize=6,
-                    color=line.get_color(),
-                )
+            # the axis the run is not placed on is written next to it: its time, or its resolution
+            ax.annotate(
+                f"{r.wall_time_s:.2g} s" if not timed else f"N = {r.resolution:.3g}",
+                (xi, ei),
+                textcoords="offset points",
+                xytext=(4, 3),
+                fontsize=6,
+                color=line.get_color(),
+            )
     ax.set_xscale("log")
     ax.set_yscale("log")
     lo, hi = _decade_limits([r.error for r in rows] + ([unc] if unc > 0 else []))

@@ -279,6 +279,12 @@ def test_error_panel_labels_its_axes_and_its_legend_hides_no_point(times):
     fig.canvas.draw()
     assert len(_labelled_ticks(ax.yaxis)) >= 2 and len(_labelled_ticks(ax.xaxis)) >= 2
     assert ax.get_xlabel().startswith("wall time") == (min(times) >= 0.5)
+    # whichever axis a run is not placed on is written next to it
+    written = {t.get_text() for t in ax.texts}
+    if min(times) >= 0.5:
+        assert {"N = 8", "N = 12", "N = 16"} <= written, written
+    else:
+        assert {f"{t:.2g} s" for t in times} <= written, written
     legend = ax.get_legend().get_window_extent()
     points = ax.transData.transform([(line.get_xdata()[0], line.get_ydata()[0]) for line in ax.lines])
     assert not any(legend.contains(x, y) for x, y in points)
