@@ -126,10 +126,20 @@ AGREEMENT_CAPTION = (
 )
 
 
+def _calibrated(checks, quantity: str) -> set[str]:
+    """The methods whose check of ``quantity`` is a calibration residual (fitted to the reference
+    it is checked against, as the graded criterion is to Eq. 39)."""
+    return {c.method for c in checks if c.quantity == quantity and c.role == "calibration"}
+
+
 def _agreement_row(scene, st, fin, checks, methods):
     """One row of the agreement map: the relative difference of each method's finest run from
     the study's reference, and each cell's note (why it is blank, or what its value is)."""
     ref = st.reference_info
+    calibrated = _calibrated(checks, "pulloff_force")
+    # the table's value is one method's own converged value: that method's cell is its
+    # convergence error, not an agreement with another method
+    table = face_references.for_scene(scene).get("pulloff_force") if ref.kind == "table" else None
     row, note = [], []
     for m in methods:
         r = fin.get(m)
@@ -145,14 +155,10 @@ def _agreement_row(scene, st, fin, checks, methods):
         else:
             v = abs(r.pulloff_force / ref.value - 1)
             row.append(v)
-            calib = any(c.method == m and c.quantity == "pulloff_force" and c.role == "calibration" for c in checks)
             own = ref.own_sequence and m == ref.own_method
-            # the table's value is one method's own converged value: that method's cell is its
-            # convergence error, not an agreement with another method
-            table = face_references.for_scene(scene).get("pulloff_force") if ref.kind == "table" else None
             own_table = table is not None and table.method == m
             tags = (
-                ["calib."] * calib
+                ["calib."] * (m in calibrated)
                 + ["own extrap."] * own
                 + ["own table value"] * own_table
                 + ["< ref. error bar"] * (v <= ref.uncertainty)
@@ -318,11 +324,7 @@ def report(
         else:
             axs[1].axis("off")
         # a method fitted to the reference here (the graded criterion's calibration) says so
-        calibrated = {
-            c.method: "calibration residual"
-            for c in checks[s]
-            if c.quantity == st.quantity and c.role == "calibration" and c.method in METHODS
-        }
+        calibrated = {m: "calibration residual" for m in _calibrated(checks[s], st.quantity) if m in METHODS}
         plotting.plot_error_vs_time(st, axs[2], notes=calibrated)
         img = _png(fig, out / f"{s}.png")
         rows = "".join(
