@@ -2,9 +2,9 @@
 
     python benchmarks/study_energy_wall_set.py [--face triangle] [--ratio 0.01]
 
-Runs one range of the zero-range sequence (the triangle's finest default range, l_c = 0.01 a,
-about two minutes on one core), keeps the warm start of its slowest attached pulling step, and
-minimises that step again from the same start, stopped after k iterations for a list of k
+Runs one range of the zero-range sequence (the triangle's finest default range, l_c = 0.01 a;
+the range and the step's re-runs take a few minutes on one core), keeps the warm start of its
+slowest attached pulling step, and minimises that step again from the same start, stopped after k iterations for a list of k
 (the minimiser is deterministic, so each run retraces the full one).  For each k it prints:
 
 * the error ||U_k - U*|| over the face cells relative to the start's, U* the full minimum;
