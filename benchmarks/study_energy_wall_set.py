@@ -3,25 +3,27 @@
     python benchmarks/study_energy_wall_set.py [--face triangle] [--ratio 0.01]
 
 Runs one range of the zero-range sequence (the triangle's finest default range, l_c = 0.01 a;
-the range and the step's re-runs take a few minutes on one core), keeps the warm start of its
-slowest attached pulling step, and minimises that step again from the same start, stopped
-after k iterations for a list of k (the minimiser is deterministic, so each run retraces the
-full one).  For each k it prints:
+the range and the re-runs below take a few minutes on one core) and prints its pull-off force.
+Of its pulling trials (``Equilibria.pulling_trial``: continuation steps and snap-off trials)
+that were not stopped as peeling off, it keeps the one that took most iterations (on the
+triangle an attached continuation step), prints its approach, iterations and force, and
+minimises it again from the same start, stopped after k iterations for a list of k (the
+minimiser is deterministic, so each run retraces the full one).  For each k it prints:
 
-* the error ||U_k - U*|| over the face cells relative to the start's, U* the full minimum;
-* the cosine between the error at k and at the k before (1: its shape has not changed);
-* the cells at the wall at k that are not at U* (they have to leave it) and those at U*
-  that are not yet at k (they have to join it);
-* in how many separate patches (8-connected) the cells to leave lie;
-* the share of the squared error on cells whose gap at U* is below 5 rho (rho the potential's
-  range), and the force.
+* the distance ||U_k - U*|| over the face cells relative to the start's, U* the converged state;
+* the cosine between the distance vectors at k and at the k before (1: direction unchanged);
+* the cells at the wall at k that are free at U* (they have to leave it) and those at the wall
+  at U* that are not yet at k (they have to join it);
+* in how many patches (8-connected groups of cells) the cells to leave lie;
+* the share of the squared distance on cells whose gap at U* is below 5 rho (rho the
+  potential's range), and the force.
 
 Then two restarts from U_85 (a state in the stall): CG restarted from U_85 itself, and from the
-best point of a line search along U_85 - U_70 (the iterates' own progress), with the iterations
-each needs to converge.  Last, the best any warm start that foresees the front could do: the
-step started from the same state with the cells that leave the wall lifted to their displacements
-at the minimum (an oracle), and lifted by rho / 10 only.  Prints tables only;
-docs/performance.md quotes them.
+lowest-energy of six multiples t = 0.5 ... 16 of U_85 - U_70 (the iterates' own progress),
+projected onto the wall (U_85 itself if none is lower), with the iterations each needs to
+converge.  Last, the trial started with the cells that are at the wall in the start but free at
+U* lifted to their displacements at U* (an oracle that frees exactly the right cells), and
+lifted by rho / 10 only.  Prints tables only; docs/performance.md quotes them.
 """
 
 from __future__ import annotations
@@ -98,7 +100,7 @@ def main() -> None:
     at_wall_min = gap_min <= 1e-13 * rho
     near = gap_min < 5 * rho
     e0 = prob.on_face(U0) - prob.on_face(full.U)
-    print(f"slowest attached step: d = {d:.6g}, {full.iterations} iterations, F = {prob.force(full.P):.9f}\n")
+    print(f"slowest pulling trial: d = {d:.6g}, {full.iterations} iterations, F = {prob.force(full.P):.9f}\n")
     rows, previous = [], e0
     for k in (k for k in STOPS if k < full.iterations):
         m = run(U0, k)
