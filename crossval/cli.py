@@ -258,7 +258,7 @@ def compare_cmd(file, resolution, quick, as_json):
     """Run every method that applies to FILE; check against theory and each other.
 
     Exit status 1 when a check fails."""
-    from .compare import compare
+    from .compare import compare, reference_source
 
     sc = load_scene(file)
     for m in applicable_methods(sc):
@@ -318,7 +318,7 @@ def compare_cmd(file, resolution, quick, as_json):
             )
         for k, v in cmp.theory.items():
             if isinstance(v, float):
-                src = cmp.theory.get("sources", {}).get(k, cmp.theory["source"])
+                src = reference_source(cmp.theory, k)
                 bar = cmp.theory.get("bars", {}).get(k)
                 click.echo(f"{'theory':<16}{k} = {v:.6g}{f' +- {bar:.2%}' if bar else ''}  ({src})")
         for k, why in cmp.skipped.items():

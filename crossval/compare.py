@@ -40,6 +40,7 @@ __all__ = [
     "raster_checks",
     "same_grid_partners",
     "reference_values",
+    "reference_source",
     "error_bar",
 ]
 
@@ -184,6 +185,12 @@ class Comparison:
     def passed(self) -> bool:
         """Whether every check passed."""
         return all(c.passed for c in self.checks)
+
+
+def reference_source(theory: dict, quantity: str) -> str:
+    """Where the reference value of ``quantity`` in :func:`reference_values`' dict comes from:
+    the reference table's entry for it, else the scene's closed form ("" when there is none)."""
+    return theory.get("sources", {}).get(quantity, theory.get("source", ""))
 
 
 def reference_values(scene: cs.Scene) -> dict:
@@ -381,7 +388,7 @@ def check_results(scene: cs.Scene, results: dict) -> tuple[Check, ...]:
             bar = error_bar(r, q)
             ref_value = float(theory.get(q, math.nan))
             ref_bar = theory.get("bars", {}).get(q, 0.0)  # the reference's own bar (0: a closed form)
-            ref_src = theory.get("sources", {}).get(q, src)
+            ref_src = reference_source(theory, q)
             own_table_value = False
             if q in table:
                 # a table value from this very method shares its bias: check against another

@@ -16,7 +16,7 @@ from contact_scene import rasterise
 
 from . import face_references, plotting
 from .cache import ResultCache, package_version
-from .compare import check_results, reference_values, same_grid_partners
+from .compare import check_results, reference_source, reference_values, same_grid_partners
 from .jsonio import dumps as json_dumps
 from .methods import METHODS, applicable_methods
 from .runner import Job, run_jobs
@@ -304,7 +304,7 @@ def report(
                 plotting.plot_curve(r, axs[0], label=_curve_label(m, r), color=plotting.METHOD_COLOURS.get(m))
         th = reference_values(SUITE[s])
         if "pulloff_force" in th:
-            source = th.get("sources", {}).get("pulloff_force", th["source"]).split(" (crossval")[0]
+            source = reference_source(th, "pulloff_force").split(" (crossval")[0]
             axs[0].axhline(-th["pulloff_force"], color="grey", lw=0.6, ls=":", label=f"-F_A: {source}")
         axs[0].legend(fontsize=7)
         axs[0].set_title(f"{s} (tension F < 0)")
@@ -344,7 +344,7 @@ def report(
         theory_rows = "".join(
             f"<tr><td>{html.escape(k)}</td><td>{v:.6g}"
             + (f" &plusmn; {th['bars'][k]:.2%}" if k in th.get("bars", {}) else "")
-            + f"</td><td>{html.escape(th.get('sources', {}).get(k, th.get('source', '')))}</td></tr>"
+            + f"</td><td>{html.escape(reference_source(th, k))}</td></tr>"
             for k, v in th.items()
             if isinstance(v, float)
         )
