@@ -107,15 +107,16 @@ def main() -> None:
         e = prob.on_face(m.U) - prob.on_face(full.U)
         at_wall = prob.on_face(m.U) - wall <= 1e-13 * rho
         cosine = float(e @ previous / (np.linalg.norm(e) * np.linalg.norm(previous)))
-        to_leave = np.zeros(prob.face_block.shape, bool)
-        to_leave[prob.face_block] = at_wall & ~at_wall_min
-        patches = ndimage.label(to_leave, np.ones((3, 3), bool))[1]
+        to_leave = at_wall & ~at_wall_min
+        on_grid = np.zeros(prob.face_block.shape, bool)
+        on_grid[prob.face_block] = to_leave
+        patches = ndimage.label(on_grid, np.ones((3, 3), bool))[1]
         rows.append(
             [
                 k,
                 f"{np.linalg.norm(e) / np.linalg.norm(e0):.2e}",
                 f"{cosine:.3f}",
-                int((at_wall & ~at_wall_min).sum()),
+                int(to_leave.sum()),
                 int((~at_wall & at_wall_min).sum()),
                 patches,
                 f"{float(np.sum(e[near] ** 2) / np.sum(e**2)):.2f}",
