@@ -6,11 +6,14 @@ State and rules (theory sheet, section 3)
 * An element of the contact set whose tension -p reaches sigma_c detaches.
 * A free element of the face re-attaches when its gap u - (d - h) closes (< 0).
 * Simultaneous detachments: at an event every element whose tension exceeds sigma_c
-  (within ``tie_tolerance`` of the largest, for round-off) leaves at once, then the set is
-  re-solved at the same approach and the pass repeats until no element exceeds sigma_c.
+  (less a relative ``tie_tolerance``, for round-off) leaves at once, then the set is
+  re-solved at the same approach and the pass repeats until no element exceeds it.
   This is the paper's rule; it keeps symmetric partners together and makes the result
   independent of element ordering.  Detaching one element at a time would be another rule,
-  at many more solves.
+  at many more solves.  A larger tolerance batches near-simultaneous events; for this event
+  driver under the paper's rule on a flat face pulled without turning points (homogeneous or
+  k >= 0, not periodic) it keeps F_A and the detachment approach within a factor
+  [1 - tie_tolerance, 1] of the exact pull's (``GriffithSettings.tie_tolerance``).
 
 Between events the contact set is fixed and the state is linear in the approach
 (``bem_griffith.contact_set``), so the event driver computes the next approach at which an

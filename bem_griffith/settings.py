@@ -36,17 +36,21 @@ class GriffithSettings:
     maxiter : int, optional
         Conjugate-gradient iteration cap per contact solve, >= 1; 2000 by default.
     tie_tolerance : float, optional
-        Elements whose tension is within this relative distance tau of the largest detach in
-        the same pass, so that symmetric partners (equal stress up to round-off) leave together;
+        A cascade pass detaches every element whose tension reaches sigma_c (1 - tau), so
+        that symmetric partners (equal stress up to round-off) leave together;
         in [1e-12, 1e-2], 1e-6 by default (at 0 an element that sits at sigma_c to round-off
-        might never leave).  A larger tau batches near-simultaneous events at a bounded cost:
-        for a flat face pulled without turning points on a non-periodic homogeneous or k >= 0
-        half-space, the contact set at every approach d lies inside the exact pull's (every
-        element leaving exactly at sigma_c) at d and contains the exact pull's at d / (1 - tau),
-        so F_A and the detachment approach are the exact ones times a factor in [1 - tau, 1]
-        (``tests/test_bem_griffith_ties.py``).
-        The premise is that an element's tension only grows when others leave (C_SS^-1 has no
-        positive off-diagonal entry, checked on dense sets for k >= 0; it fails for k < 0).
+        might never leave).  A larger tau batches near-simultaneous events at a bounded cost,
+        for the event driver under ``criterion = "paper"`` on a flat face pulled without
+        turning points on a non-periodic homogeneous or k >= 0 half-space: the contact set at
+        every approach d lies inside the exact pull's (every element leaving exactly at
+        sigma_c) at d and contains the exact pull's at d / (1 - tau), so F_A and the detachment
+        approach (not the approach at F_A) are the exact ones times a factor in [1 - tau, 1], up
+        to the CG tolerance (``tests/test_bem_griffith_ties.py``).  Its premises are checked
+        numerically, not proven: C_SS^-1 has no positive off-diagonal entry and C_SS^-1 1 > 0
+        (tensions grow as elements leave, and no free gap closes), and the early decisions and
+        the Eq. 14 cut change no decision.  The first fails for k <= -0.1; the bound fails for
+        the fixed-step driver and the stress-intensity criterion (measured on the star, square
+        and triangle).
     stop_when_certainly_detached : bool, optional
         Flat faces only (True by default): a cascade at fixed approach d ends as soon as abs(d)
         exceeds (1 + m) times the upper-bound critical approach (Eq. 14) of the remaining
