@@ -8,7 +8,8 @@ set containing it.  With tie tolerance tau the cascade leaves the largest set th
 sigma_c (1 - tau) and keeps it until sigma_c is met: its set at d lies inside the exact pull's at
 d and contains the exact pull's at d / (1 - tau) (tensions scale with |d|).  The force |d| K(S)
 grows with the set, so F_A and the detachment approach lie within a factor [1 - tau, 1] of the
-exact ones (``GriffithSettings.tie_tolerance``).
+exact ones (``GriffithSettings.tie_tolerance``).  The same property checks the event driver
+itself: the set a pull holds at d is the one a single cascade from the whole face at d leaves.
 """
 
 from __future__ import annotations
@@ -20,6 +21,9 @@ import pytest
 
 import bem_griffith as bg
 import contact_scene as cs
+from bem_griffith.counters import WorkCounters
+from bem_griffith.driver import cascade
+from bem_griffith.press import pressed_state
 from bem_griffith.problem import build_problem
 from bem_griffith.stress_intensity import PaperRule
 from crossval.suite import scene as builtin_scene
@@ -137,3 +141,37 @@ def test_the_premise_fails_for_negative_grading():
 def test_a_zero_tie_tolerance_is_refused():
     with pytest.raises(cs.SceneError, match="settings.tie_tolerance"):
         bg.GriffithSettings(tie_tolerance=0.0)
+
+
+@pytest.mark.parametrize("name", ["star", "triangle"])
+def test_the_pulled_set_is_the_largest_that_holds(name):
+    # the bound's consequence for the driver itself: the set an event-driven pull holds at d does
+    # not depend on its history, it is what one cascade from the whole face at d leaves
+    scene = builtin_scene(name)
+    settings = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N))
+    pulled = _pull(name, settings.tie_tolerance)
+    at = _between(pulled.curve.approach)[::3]
+    pulled = _pull(name, settings.tie_tolerance, at)
+    problem = build_problem(scene, settings)
+    counters = WorkCounters()
+    approach, whole_face = pressed_state(problem, scene, settings, counters)
+    assert approach == 0.0 and whole_face.contact.sum() == problem.face.sum()
+    for snapshot in pulled.snapshots:
+        left = cascade(problem, whole_face, snapshot.approach, settings, counters, [])
+        assert np.array_equal(left.contact, snapshot.contact), f"d = {snapshot.approach:.6g}"
+    assert len(pulled.snapshots) >= 10
+
+
+def test_a_driver_that_steps_past_its_events_is_caught(monkeypatch):
+    # mutant: every event taken a relative 1e-3 too late, so the pull holds sets too long
+    import bem_griffith.driver as driver
+
+    exact_event = driver.next_event
+
+    def late(problem, solution, approach, target, rule=None):
+        event = exact_event(problem, solution, approach, target, rule)
+        return event if event == target else event * (1 + 1e-3)
+
+    monkeypatch.setattr(driver, "next_event", late)
+    with pytest.raises(AssertionError, match="d = "):
+        test_the_pulled_set_is_the_largest_that_holds("star")
