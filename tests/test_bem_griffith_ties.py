@@ -38,8 +38,17 @@ SLACK = 1e-8
 N = 24  # elements per radius
 
 
+def _scene(name: str) -> cs.Scene:
+    """A built-in scene; "<face> graded" puts that face on the graded k = 0.5 material."""
+    face, _, graded = name.partition(" ")
+    scene = builtin_scene(face)
+    if graded:
+        scene = dataclasses.replace(scene, material=builtin_scene("graded_circle_k0.5").material)
+    return scene
+
+
 def _pull(name: str, tau: float, snapshots=()):
-    scene = builtin_scene(name)
+    scene = _scene(name)
     scene = dataclasses.replace(scene, outputs=dataclasses.replace(scene.outputs, snapshots=tuple(snapshots)))
     settings = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N), tie_tolerance=tau)
     return bg.solve(scene, settings)
@@ -82,7 +91,7 @@ def _bound_failures(name: str, tau: float) -> list[str]:
     return failures
 
 
-@pytest.mark.parametrize("name", ["star", "triangle"])
+@pytest.mark.parametrize("name", ["star", "triangle", "star graded"])
 def test_a_tie_tolerance_moves_the_pull_within_its_bound(name):
     assert _bound_failures(name, TAU) == []
 
@@ -143,11 +152,11 @@ def test_a_zero_tie_tolerance_is_refused():
         bg.GriffithSettings(tie_tolerance=0.0)
 
 
-@pytest.mark.parametrize("name", ["star", "triangle"])
+@pytest.mark.parametrize("name", ["star", "triangle", "star graded"])
 def test_the_pulled_set_is_the_largest_that_holds(name):
     # the bound's consequence for the driver itself: the set an event-driven pull holds at d does
     # not depend on its history, it is what one cascade from the whole face at d leaves
-    scene = builtin_scene(name)
+    scene = _scene(name)
     settings = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N))
     pulled = _pull(name, settings.tie_tolerance)
     at = _between(pulled.curve.approach)[::3]
