@@ -10,10 +10,11 @@ State and rules (theory sheet, section 3)
   re-solved at the same approach and the pass repeats until no element exceeds it.
   This is the paper's rule; it keeps symmetric partners together and makes the result
   independent of element ordering.  Detaching one element at a time would be another rule,
-  at many more solves.  A larger tolerance batches near-simultaneous events; for this event
-  driver under the paper's rule on a flat face pulled without turning points (homogeneous or
-  k >= 0, not periodic) it keeps F_A and the detachment approach within a factor
-  [1 - tie_tolerance, 1] of the exact pull's (``GriffithSettings.tie_tolerance``).
+  at many more solves.  A larger tolerance merges events that fall close together; for this
+  event driver under ``criterion = "paper"`` on a flat face pulled without turning points
+  (homogeneous or k >= 0, not periodic) it keeps F_A and the detachment approach within a
+  factor [1 - tie_tolerance, 1] of the exact pull's, up to the CG tolerance
+  (``GriffithSettings.tie_tolerance``).
 
 Between events the contact set is fixed and the state is linear in the approach
 (``bem_griffith.contact_set``), so the event driver computes the next approach at which an

@@ -36,21 +36,22 @@ class GriffithSettings:
     maxiter : int, optional
         Conjugate-gradient iteration cap per contact solve, >= 1; 2000 by default.
     tie_tolerance : float, optional
-        A cascade pass detaches every element whose tension reaches sigma_c (1 - tau), so
-        that symmetric partners (equal stress up to round-off) leave together;
-        in [1e-12, 1e-2], 1e-6 by default (at 0 an element that sits at sigma_c to round-off
-        might never leave).  A larger tau batches near-simultaneous events at a bounded cost,
-        for the event driver under ``criterion = "paper"`` on a flat face pulled without
-        turning points on a non-periodic homogeneous or k >= 0 half-space: the contact set at
-        every approach d lies inside the exact pull's (every element leaving exactly at
-        sigma_c) at d and contains the exact pull's at d / (1 - tau), so F_A and the detachment
-        approach (not the approach at F_A) are the exact ones times a factor in [1 - tau, 1], up
-        to the CG tolerance (``tests/test_bem_griffith_ties.py``).  Its premises are checked
-        numerically, not proven: C_SS^-1 has no positive off-diagonal entry and C_SS^-1 1 > 0
-        (tensions grow as elements leave, and no free gap closes), and the early decisions and
-        the Eq. 14 cut change no decision.  The first fails for k <= -0.1; the bound fails for
-        the fixed-step driver and the stress-intensity criterion (measured on the star, square
-        and triangle).
+        tau: a cascade pass detaches every element whose tension reaches sigma_c (1 - tau), so
+        that symmetric partners (tensions equal up to floating-point round-off) leave
+        together; in [1e-12, 1e-2], 1e-6 by default (at 0 an element that sits at sigma_c to
+        round-off might never leave).  A larger tau merges events whose approaches lie within
+        a relative tau into one cascade, at a bounded cost, for the event driver under
+        ``criterion = "paper"`` (Eq. 22; Eq. 42 on graded bodies) on a flat face pulled
+        without turning points on a non-periodic homogeneous or k >= 0 half-space: the
+        contact set at every approach d lies inside that of the exact pull (ties to round-off
+        only, tau -> 0) at d and contains the exact pull's at d / (1 - tau), so F_A and the
+        detachment approach (not the approach at F_A) lie between (1 - tau) times the exact
+        values and the exact values, up to the CG tolerance (``tests/test_bem_griffith_ties.py``).
+        Its premises are checked numerically, not proven: C_SS^-1 has no positive
+        off-diagonal entry (tensions grow as elements leave; it fails at k = -0.1 and -0.5)
+        and C_SS^-1 1 > 0 (no free gap closes), and the early decisions and the Eq. 14 cut
+        change no decision.  The fixed-step driver breaks the bound (tested); the
+        stress-intensity criterion is not covered.
     stop_when_certainly_detached : bool, optional
         Flat faces only (True by default): a cascade at fixed approach d ends as soon as abs(d)
         exceeds (1 + m) times the upper-bound critical approach (Eq. 14) of the remaining

@@ -7,15 +7,15 @@ FFT convolution (scipy.fft rfft2 -> multiply -> irfft2) at the same padded size,
 the CPU time to it (the "matvec-equivalents"; the CPU time, because on a shared machine the
 wall time also counts other processes) and the operator applications actually counted.  A second
 table shows which solver choices change the answer and what they cost, with the CG
-iterations per contact solve (the speed-ups must not change it; a looser CG tolerance moves it
-at its own level, and a larger tie tolerance tau within the factor [1 - tau, 1] it is proven
-to keep, ``GriffithSettings.tie_tolerance``): on a circle, a 4:1 rectangle (whose padded window's
+iterations per contact solve (the speed-ups must not change the answer; a looser CG tolerance
+moves it at its own level, and a larger tie tolerance tau within the factor [1 - tau, 1] that
+``GriffithSettings.tie_tolerance`` states, under its conditions): on a circle, a 4:1 rectangle (whose padded window's
 symbol has negative modes, so the preconditioner must be the lattice's) and a star, whose tips
 detach first so that its later solves fit into smaller windows (the rows "every set to rtol"
 and "plain warm start" switch off the early decisions and the local warm start, "both" is the
 solver before them).  ``--star512`` adds the
-paper's size, the five-ray star on a 512^2 grid over its bounding box (a quarter of an hour or
-more), once as it is and once with tie tolerance 1e-2.  ``--update`` writes docs/performance_griffith_pulloff.json and
+paper's size, the five-ray star on a 512^2 grid over its bounding box (long), once as it is
+and once with tie tolerance 1e-2.  ``--update`` writes docs/performance_griffith_pulloff.json and
 docs/performance_griffith_choices.json (rendered into docs/performance.md by
 ``python benchmarks/docs_tables.py``).
 

@@ -1,4 +1,5 @@
-"""What the tie tolerance of the Griffith BEM costs: a proven bound, checked.
+"""What the tie tolerance of the Griffith BEM costs: a bound, proven from premises that are
+checked here numerically.
 
 On a flat face pulled monotonically, an element's tension -p = |d| x1 only grows as the pull
 goes on and as other elements leave (C_SS^-1 has no positive off-diagonal entry).  Then the
@@ -47,10 +48,10 @@ def _scene(name: str) -> cs.Scene:
     return scene
 
 
-def _pull(name: str, tau: float, snapshots=()):
+def _pull(name: str, tau: float, snapshots=(), **options):
     scene = _scene(name)
     scene = dataclasses.replace(scene, outputs=dataclasses.replace(scene.outputs, snapshots=tuple(snapshots)))
-    settings = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N), tie_tolerance=tau)
+    settings = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N), tie_tolerance=tau, **options)
     return bg.solve(scene, settings)
 
 
@@ -65,15 +66,15 @@ def _between(*approaches) -> np.ndarray:
     return 0.5 * (lo + hi)[long_enough]
 
 
-def _bound_failures(name: str, tau: float) -> list[str]:
+def _bound_failures(name: str, tau: float, **options) -> list[str]:
     """Where the pull with tie tolerance ``tau`` leaves the bound around the exact pull, at an
     approach inside every interval between the events of either pull."""
-    exact, tied = _pull(name, EXACT), _pull(name, tau)
+    exact, tied = _pull(name, EXACT, **options), _pull(name, tau, **options)
     events, tied_events = exact.curve.approach, tied.curve.approach
     inner = _between(events, tied_events)  # tied at d inside exact at d
     outer = _between(events * (1 - tau), tied_events)  # tied at d contains exact at d / (1 - tau)
     wanted = (*inner, *outer, *(outer / (1 - tau)))
-    exact, tied = _pull(name, EXACT, wanted), _pull(name, tau, wanted)
+    exact, tied = _pull(name, EXACT, wanted, **options), _pull(name, tau, wanted, **options)
     none = np.zeros_like(exact.snapshots[0].contact)  # beyond the detachment: no snapshot, no contact
     sets = {s.approach: s.contact for s in exact.snapshots}
     tied_sets = {s.approach: s.contact for s in tied.snapshots}
@@ -101,6 +102,12 @@ def test_the_bound_is_exercised_not_vacuous():
     exact, tied = _pull("star", EXACT), _pull("star", TAU)
     assert tied.info["events"] < exact.info["events"] / 2
     assert 1 - TAU <= tied.pulloff_force / exact.pulloff_force < 1 - 1e-4
+
+
+def test_the_fixed_step_driver_is_not_covered():
+    # why the bound names the event driver: with fixed steps a tied cascade can run at an
+    # approach past several events, where the exact pull would have held a larger set
+    assert _bound_failures("star", TAU, driver="fixed_step", step=0.05) != []
 
 
 def test_a_cascade_that_leaves_below_its_threshold_breaks_the_bound(monkeypatch):
@@ -141,10 +148,11 @@ def test_tensions_grow_when_elements_leave(name, k):
         assert smallest_x1 > 0.0
 
 
-def test_the_premise_fails_for_negative_grading():
+@pytest.mark.parametrize("k", [-0.5, -0.1])
+def test_the_premise_fails_for_negative_grading(k):
     # why the bound is not claimed for k < 0: removing an element can relieve another
-    off_diagonal, _ = _premise("star", -0.5)
-    assert off_diagonal > 1e-3
+    off_diagonal, _ = _premise("star", k)
+    assert off_diagonal > 0.0
 
 
 def test_a_zero_tie_tolerance_is_refused():
