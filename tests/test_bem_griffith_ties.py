@@ -28,7 +28,7 @@ from bem_griffith.press import pressed_state
 from bem_griffith.problem import build_problem
 from bem_griffith.stress_intensity import PaperRule
 from crossval.suite import scene as builtin_scene
-from halfspace.kernel import graded_square_integral, love_square_integral
+from halfspace.kernel import graded_influence, love_influence
 
 EXACT = 1e-12  # the smallest tie tolerance: ties to round-off only
 TAU = 1e-2
@@ -126,10 +126,10 @@ def _premise(name: str, k: float, holes: float = 0.0, seed: int = 0) -> tuple[fl
     face = build_problem(builtin_scene(name), settings).face.copy()
     face &= np.random.default_rng(seed).random(face.shape) >= holes
     nx, ny = face.shape
-    dx, dy = np.meshgrid(np.arange(-nx + 1, nx), np.arange(-ny + 1, ny), indexing="ij")
-    table = love_square_integral(dx, dy, 0.5) if k == 0 else graded_square_integral(dx, dy, 0.5, k)
+    # the solver's own coefficients, offsets laid out modulo the (2 nx, 2 ny) padded grid
+    table = love_influence(nx, ny, 1.0, 1.0) if k == 0 else graded_influence(nx, ny, 1.0, 1.0, 1.0, k)
     i, j = np.nonzero(face)
-    c = table[i[:, None] - i[None, :] + nx - 1, j[:, None] - j[None, :] + ny - 1]
+    c = table[(i[:, None] - i[None, :]) % (2 * nx), (j[:, None] - j[None, :]) % (2 * ny)]
     inverse = np.linalg.inv(c)
     off = inverse - np.diag(np.diag(inverse))
     x1 = inverse.sum(axis=1)
