@@ -47,10 +47,11 @@ class GriffithSettings:
         only, tau -> 0) at d and contains the exact pull's at d / (1 - tau), so F_A and the
         detachment approach (not the approach at F_A) lie between (1 - tau) times the exact
         values and the exact values, up to the CG tolerance (``tests/test_bem_griffith_ties.py``).
-        Its premises are checked numerically, not proven: C_SS^-1 has no positive
-        off-diagonal entry (tensions grow as elements leave; it fails at k = -0.1 and -0.5)
-        and C_SS^-1 1 > 0 (no free gap closes), and the early decisions and the Eq. 14 cut
-        change no decision.  The fixed-step driver breaks the bound (tested); the
+        Its premises, that tensions grow as elements leave (C_SS^-1 has no positive
+        off-diagonal entry) and that no free gap closes, hold on every contact set when no
+        off-diagonal coefficient of the infinite element lattice's C^-1 is positive, which is
+        computed, not proven, for k = 0 ... 0.95 (it fails at k = -0.1; docs/methods.md); and
+        the early decisions and the Eq. 14 cut change no decision.  The fixed-step driver breaks the bound (tested); the
         stress-intensity criterion is not covered.
     stop_when_certainly_detached : bool, optional
         Flat faces only (True by default): a cascade at fixed approach d ends as soon as abs(d)
