@@ -187,7 +187,13 @@ def solve_contact_set(
         inverse_diagonal = problem.inverse_diagonal
         energy_bounds = precondition is not None and inverse_diagonal is not None
 
-        def early_stop(x: np.ndarray, image: np.ndarray | None, residual_norm: float, residual_energy: float) -> bool:
+        # where the lattice's C^-1 is a random walk's (``Problem.walk_bounds``) the residual's
+        # largest entry bounds the errors too, often more tightly than its energy
+        walk = problem.walk_bounds and inverse_diagonal is not None
+
+        def early_stop(
+            x: np.ndarray, image: np.ndarray | None, residual_norm: float, residual_energy: float, residual_max: float
+        ) -> bool:
             nonlocal tried_displacements
             if tried_displacements:  # a windowed solve's displacements left it undecided: finish it
                 return False
@@ -211,6 +217,12 @@ def solve_contact_set(
                 energy_error = max(math.sqrt(SAMPLING_MARGIN * max(residual_energy, 0.0)), 1e-13 * math.sqrt(n / floor))
                 error = min(error, math.sqrt(inverse_diagonal) * energy_error)
                 displacement_error = min(displacement_error, math.sqrt(problem.self_influence) * energy_error)
+            if walk and inverse_diagonal is not None:
+                # |e_i| <= sum_j |(C_SS^-1)_ij| max|r| <= 2 (C_SS^-1)_ii max|r|, and a free cell's
+                # displacement error is a sub-probability average of r (``Problem.walk_bounds``)
+                largest = max(residual_max, 1e-13 * math.sqrt(n))
+                error = min(error, 2.0 * inverse_diagonal * largest)
+                displacement_error = min(displacement_error, largest)
             if decide(contact, x, displacement, error, displacement_error):
                 return True
             decided_image.clear()

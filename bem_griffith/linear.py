@@ -39,7 +39,7 @@ def conjugate_gradient(
     maxiter: int = 1000,
     precondition: Callable[[np.ndarray], np.ndarray] | None = None,
     restrict: np.ndarray | None = None,
-    early_stop: Callable[[np.ndarray, np.ndarray | None, float, float], bool] | None = None,
+    early_stop: Callable[[np.ndarray, np.ndarray | None, float, float, float], bool] | None = None,
     early_stop_below: float = 1e-3,
 ) -> CGResult:
     """(Preconditioned) CG for A x = b, warm-started from ``x0``.
@@ -49,9 +49,10 @@ def conjugate_gradient(
     solution is accumulated alongside at no extra operator cost.  Never raises on
     non-convergence: the result says so, with the relative residual reached.
 
-    ``early_stop(x, full_image, residual_norm, residual_energy)`` is asked after every step whose
-    relative residual is at most ``early_stop_below``, with the absolute residual norm
-    ||b - A x|| and r.M r, M the preconditioner (||r||^2 without one); when it returns True, CG
+    ``early_stop(x, full_image, residual_norm, residual_energy, residual_max)`` is asked after
+    every step whose relative residual is at most ``early_stop_below``, with the absolute
+    residual norm ||b - A x||, r.M r (M the preconditioner; ||r||^2 without one) and the
+    residual's largest magnitude max |r_i|; when it returns True, CG
     stops there (``stopped_early``): the caller has learnt what it needed from an iterate whose
     error it can bound by the residual."""
 
@@ -93,7 +94,7 @@ def conjugate_gradient(
         preconditioned = precondition(residual) if precondition else residual
         r_dot_z_new = _dot(residual, preconditioned)
         if early_stop is not None and relative_residual <= early_stop_below:
-            if early_stop(x, full_image, relative_residual * b_norm, r_dot_z_new):
+            if early_stop(x, full_image, relative_residual * b_norm, r_dot_z_new, float(np.abs(residual).max())):
                 return CGResult(x, iterations, relative_residual, False, full_image, stopped_early=True)
         direction *= r_dot_z_new / r_dot_z  # beta
         direction += preconditioned

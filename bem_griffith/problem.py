@@ -81,6 +81,15 @@ class Problem:
         C_00, the displacement of a cell under its own unit pressure: for a cell i outside S,
         c^T C_SS^-1 c < C_00 with c the influences of S on i (the Schur complement of C on S
         and i is positive), which bounds the error of the displacements by the energy norm.
+    walk_bounds
+        Whether no off-diagonal coefficient of the infinite element lattice's C^-1 is positive
+        (non-periodic, homogeneous or k >= 0: computed in ``tests/test_bem_griffith_ties.py``).
+        Then C^-1 is c0 (I - P) with P a transient random walk, and for every contact set S,
+        C_SS^-1 has no positive off-diagonal entry and positive row sums, so the absolute row
+        sums of C_SS^-1 are at most twice its diagonal (at most c0, the lattice's), and for a
+        free cell f the row C_fS C_SS^-1 is the walk's distribution of where it first meets S,
+        nonnegative and summing to at most one: a residual r bounds every pressure's error by
+        2 c0 max |r| and every free displacement's by max |r|.
     """
 
     operator: HalfSpaceOperator
@@ -100,6 +109,7 @@ class Problem:
     kernel_norm: float = math.inf
     inverse_diagonal: float | None = None
     self_influence: float = math.inf
+    walk_bounds: bool = False
 
     @property
     def cell_area(self) -> float:
@@ -231,6 +241,7 @@ def build_problem(scene: Scene, settings: GriffithSettings) -> Problem:
         if inverse is None or periodic
         else SAMPLING_MARGIN * full_spectrum_mean(inverse, operator.padded_shape[1]),
         self_influence=float(kernel[0, 0]),
+        walk_bounds=not periodic and point_kernel[1] >= 0.0,
     )
 
 

@@ -1,9 +1,10 @@
 """Early decisions in the Griffith BEM's cascades (``GriffithSettings.decide_early``).
 
 A cascade's passing contact sets are solved only until a bound on their error fixes the next
-pass.  The bound rests on two facts tested here against dense matrices: no eigenvalue of any
-C_SS lies below ``Problem.eigenvalue_floor``, and no displacement error exceeds
-``kernel_norm`` times the pressures' Euclidean error.  The decisions, and so the contact sets,
+pass.  The bounds rest on facts tested here against dense matrices: no eigenvalue of any
+C_SS lies below ``Problem.eigenvalue_floor``, no displacement error exceeds ``kernel_norm``
+times the pressures' Euclidean error, the energy bounds of the Fourier preconditioner, and
+(homogeneous or k >= 0) the sign structure behind the residual's largest entry.  The decisions, and so the contact sets,
 must be those of full solves.
 """
 
@@ -104,6 +105,44 @@ def test_energy_bounds_hold_for_every_contact_submatrix(material, shape):
     assert largest_diagonal <= problem.inverse_diagonal <= 2.5 * largest_diagonal
 
 
+@pytest.mark.parametrize(
+    "material",
+    [cs.Homogeneous(0.75, 0.5), cs.PowerLawGraded(1.0, 0.5, 0.3), cs.PowerLawGraded(1.0, 0.5, -0.5)],
+    ids=["homogeneous", "graded k=0.3", "graded k=-0.5"],
+)
+@pytest.mark.parametrize("shape", [cs.Circle(1.0), cs.Star(5, 1.0, 0.45)], ids=["circle", "star"])
+def test_max_norm_bounds_hold_for_every_contact_submatrix(material, shape):
+    """The bounds the early decisions take from the residual's largest entry where
+    ``Problem.walk_bounds`` holds, against dense matrices, for the whole face and random
+    subsets S: every absolute row sum of C_SS^-1 is 2 (C_SS^-1)_ii - (C_SS^-1 1)_i (no positive
+    off-diagonal entry), at most 2 ``inverse_diagonal``, and for every free cell f the row
+    C_fS C_SS^-1 is nonnegative with sum below one.  At k = -0.5, where ``walk_bounds`` is off,
+    the sign structure fails and some row of C_fS C_SS^-1 sums in magnitude beyond one (the
+    displacement bound would not hold)."""
+    problem = bg.solver.build_problem(scene(shape, material), settings(9 if isinstance(shape, cs.Circle) else 12))
+    C = dense_operator(problem)
+    face = problem.face.ravel()
+    rng = np.random.default_rng(7)
+    broken = False
+    for share in (1.0, 0.5, 0.1):
+        subset = face & (rng.random(face.size) < share) if share < 1 else face
+        inverse = np.linalg.inv(C[np.ix_(subset, subset)])
+        absolute_rows = np.abs(inverse).sum(axis=1)
+        signed = 2.0 * inverse.diagonal() - inverse.sum(axis=1)
+        free = face & ~subset
+        first_meeting = C[np.ix_(free, subset)] @ inverse if free.any() else np.zeros((0, subset.sum()))
+        if problem.walk_bounds:
+            assert absolute_rows == pytest.approx(signed, rel=1e-9)
+            assert absolute_rows.max() <= 2.0 * problem.inverse_diagonal
+            assert first_meeting.min(initial=0.0) >= -1e-12
+            assert np.abs(first_meeting).sum(axis=1).max(initial=0.0) < 1.0
+        else:
+            broken |= not np.allclose(absolute_rows, signed, rtol=1e-9)
+            broken |= bool(np.abs(first_meeting).sum(axis=1).max(initial=0.0) > 1.0)
+    assert problem.walk_bounds == (material.exponent >= 0 if isinstance(material, cs.PowerLawGraded) else True)
+    assert problem.walk_bounds or broken
+
+
 def test_cg_stops_when_asked_and_only_below_its_threshold():
     rng = np.random.default_rng(0)
     Q = rng.random((30, 30))
@@ -111,9 +150,10 @@ def test_cg_stops_when_asked_and_only_below_its_threshold():
     b = rng.random(30)
     asked = []
 
-    def stop(x, image, residual_norm, residual_energy):
+    def stop(x, image, residual_norm, residual_energy, residual_max):
         asked.append(residual_norm / np.linalg.norm(b))
         assert residual_energy == pytest.approx(residual_norm**2, rel=1e-9)  # r.M r, M = I
+        assert residual_max == pytest.approx(np.abs(b - A @ x).max(), rel=1e-6)
         return residual_norm < 1e-6 * np.linalg.norm(b)
 
     out = conjugate_gradient(lambda v: A @ v, b, rtol=1e-12, early_stop=stop, early_stop_below=1e-3)
