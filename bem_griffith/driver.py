@@ -12,7 +12,7 @@ State and rules (theory sheet, section 3)
   independent of element ordering.  Detaching one element at a time would be another rule,
   at many more solves.  A larger tolerance merges events that fall close together; for this
   event driver under ``criterion = "paper"`` on a flat face pulled without turning points
-  (homogeneous or k >= 0, not periodic) it keeps F_A and the detachment approach within a
+  (homogeneous or 0 <= k <= 0.95, not periodic) it keeps F_A and the detachment approach within a
   factor [1 - tie_tolerance, 1] of the exact pull's, up to the CG tolerance
   (``GriffithSettings.tie_tolerance``).
 

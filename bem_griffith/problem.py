@@ -31,6 +31,9 @@ __all__ = ["Problem", "build_problem", "estimate_memory_gb", "max_elements_per_r
 #: padded grid, is widened into a bound: the samples leave out aliases and the frequencies between
 #: them (the eigenvalue floor is halved, the inverse diagonal and the energy r.M r doubled)
 SAMPLING_MARGIN = 2.0
+#: the graded exponents k for which no off-diagonal coefficient of the element lattice's C^-1 is
+#: positive, computed in ``tests/test_bem_griffith_ties.py`` (at k = 0 ... 0.95; k = -0.1 fails)
+WALK_EXPONENTS = (0.0, 0.95)
 
 
 @dataclass(frozen=True, eq=False, kw_only=True)
@@ -83,7 +86,7 @@ class Problem:
         and i is positive), which bounds the error of the displacements by the energy norm.
     walk_bounds
         Whether no off-diagonal coefficient of the infinite element lattice's C^-1 is positive
-        (non-periodic, homogeneous or k >= 0: computed in ``tests/test_bem_griffith_ties.py``).
+        (non-periodic, homogeneous or graded with k in ``WALK_EXPONENTS``).
         Then C^-1 is c0 (I - P) with P a transient random walk, and for every contact set S,
         C_SS^-1 has no positive off-diagonal entry and positive row sums, so the absolute row
         sums of C_SS^-1 are at most twice its diagonal (at most c0, the lattice's), and for a
@@ -241,7 +244,7 @@ def build_problem(scene: Scene, settings: GriffithSettings) -> Problem:
         if inverse is None or periodic
         else SAMPLING_MARGIN * full_spectrum_mean(inverse, operator.padded_shape[1]),
         self_influence=float(kernel[0, 0]),
-        walk_bounds=not periodic and point_kernel[1] >= 0.0,
+        walk_bounds=not periodic and WALK_EXPONENTS[0] <= point_kernel[1] <= WALK_EXPONENTS[1],
     )
 
 

@@ -42,7 +42,7 @@ class GriffithSettings:
         round-off might never leave).  A larger tau merges events whose approaches lie within
         a relative tau into one cascade, at a bounded cost, for the event driver under
         ``criterion = "paper"`` (Eq. 22; Eq. 42 on graded bodies) on a flat face pulled
-        without turning points on a non-periodic homogeneous or k >= 0 half-space: the
+        without turning points on a non-periodic homogeneous or 0 <= k <= 0.95 half-space: the
         contact set at every approach d lies inside that of the exact pull (ties to round-off
         only, tau -> 0) at d and contains the exact pull's at d / (1 - tau), so F_A and the
         detachment approach (not the approach at F_A) lie between (1 - tau) times the exact

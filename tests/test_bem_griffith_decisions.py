@@ -4,8 +4,8 @@ A cascade's passing contact sets are solved only until a bound on their error fi
 pass.  The bounds rest on facts tested here against dense matrices: no eigenvalue of any
 C_SS lies below ``Problem.eigenvalue_floor``, no displacement error exceeds ``kernel_norm``
 times the pressures' Euclidean error, the energy bounds of the Fourier preconditioner, and
-(homogeneous or k >= 0) the sign structure behind the residual's largest entry.  The decisions, and so the contact sets,
-must be those of full solves.
+(homogeneous or 0 <= k <= 0.95) the sign structure behind the residual's largest entry.  The
+decisions, and so the contact sets, must be those of full solves.
 """
 
 import dataclasses

@@ -26,7 +26,7 @@ import contact_scene as cs
 from bem_griffith.counters import WorkCounters
 from bem_griffith.driver import cascade
 from bem_griffith.press import pressed_state
-from bem_griffith.problem import build_problem
+from bem_griffith.problem import WALK_EXPONENTS, build_problem
 from bem_griffith.stress_intensity import PaperRule
 from crossval.suite import scene as builtin_scene
 from halfspace.kernel import graded_influence, graded_square_integral, love_influence, love_square_integral
@@ -212,7 +212,7 @@ def _near_lattice_coefficients(k: float) -> tuple[np.ndarray, np.ndarray, float]
     return b + correction, correction, float(off_diagonal.max() / fine[0, 0])
 
 
-@pytest.mark.parametrize("k", [0.0, 0.1, 0.25, 0.5, 0.75, 0.9, 0.95])
+@pytest.mark.parametrize("k", [WALK_EXPONENTS[0], 0.1, 0.25, 0.5, 0.75, 0.9, WALK_EXPONENTS[1]])
 def test_the_lattice_inverse_has_no_positive_off_diagonal_coefficient(k):
     # the premises on every contact set at once: C_SS is a section of the infinite lattice's C,
     # whose inverse is c0 (I - P) with P the steps of a random walk (P >= 0 off the diagonal
