@@ -31,6 +31,14 @@ QUANTITIES = ("pulloff_force", "pulloff_approach", "stiffness")
 METHODS = ("bem_griffith", "bem_energy")
 
 
+#: how closely a refit of stored runs repeats the stored fits: the energy BEM's limit takes a rate
+#: found by a bounded minimisation over a flat misfit, whose argument follows the rounding of the
+#: least-squares solves to about the square root of machine epsilon; on a machine with AVX-512
+#: kernels the refit of the table computed on another one moved limits by 1.4e-9, bars by 1.0e-7
+#: and relative gaps by 1.6e-7, while a 1 % change of one range moves a limit by about 1e-3
+REFIT_RTOL = 1e-6
+
+
 def _load_script():
     sys.path.insert(0, str(ROOT / "benchmarks"))  # the script imports its sibling _timing
     spec = importlib.util.spec_from_file_location("reference_table", ROOT / "benchmarks" / "reference_table.py")
@@ -209,9 +217,9 @@ def energy_check_problems(doc: dict) -> list[str]:
     F0, _, est = richardson(np.array(seq["process_zone_ratios"]), np.array(seq["forces_at_nominal_area"]))
     out = []
     stored = (check["value"], check["estimate"])
-    # the script fits this very sequence, so the refit repeats its arithmetic; a 1 % change
-    # of one range moves the limit by ~1e-3
-    if not (math.isclose(F0, stored[0], rel_tol=1e-9) and math.isclose(est / F0, stored[1], rel_tol=1e-9)):
+    # the script fits this very sequence, so the refit repeats its arithmetic up to REFIT_RTOL; a
+    # 1 % change of one range moves the limit by ~1e-3
+    if not (math.isclose(F0, stored[0], rel_tol=REFIT_RTOL) and math.isclose(est / F0, stored[1], rel_tol=REFIT_RTOL)):
         out.append(f"stored limit {stored[0]:.6g} +- {stored[1]:.3g}, its sequence gives {F0:.6g} +- {est / F0:.3g}")
     if not math.isclose(check["error"], check["value"] - 1.0, rel_tol=1e-9, abs_tol=1e-15):
         out.append(f"stored error {check['error']:.3g} is not the limit less 1")
@@ -316,7 +324,9 @@ def test_square_sweep_reproduces_the_stored_points(table):
         for point in sweep["points"][:2]:
             row = script.griffith_point("square", criterion, point["N"])
             for q in QUANTITIES:
-                assert row["raw"][q] == pytest.approx(point["raw"][q], rel=1e-9, abs=0), (criterion, point["N"], q)
+                # the Griffith solve reproduces to its CG tolerance's reach: 1.2e-9 between two
+                # machines' BLAS/FFT builds (crossval regress)
+                assert row["raw"][q] == pytest.approx(point["raw"][q], rel=1e-8, abs=0), (criterion, point["N"], q)
             assert row["face_area"] == pytest.approx(point["face_area"], rel=1e-12)
 
 
@@ -335,17 +345,17 @@ def rebuilt_problems(doc: dict, cache: Path) -> list[str]:
                 w = again.get(key)
                 if isinstance(v, dict) and "value" in v:
                     same = w is not None and all(
-                        math.isclose(v[k], w[k], rel_tol=1e-12) for k in ("value", "relative_bar")
+                        math.isclose(v[k], w[k], rel_tol=REFIT_RTOL) for k in ("value", "relative_bar")
                     )
                 elif isinstance(v, float):
-                    same = w is not None and math.isclose(v, w, rel_tol=1e-12, abs_tol=1e-15)
+                    same = w is not None and math.isclose(v, w, rel_tol=REFIT_RTOL, abs_tol=1e-15)
                 else:
                     same = v == w
                 if not same:
                     out.append(f"{face} {q} {key}: stored {v!r}, its runs give {w!r}")
     check, again = doc["energy_check"], rebuilt["energy_check"]
     for k in ("value", "relative_bar", "covered"):
-        if again is None or check[k] != pytest.approx(again[k], rel=1e-12):
+        if again is None or check[k] != pytest.approx(again[k], rel=REFIT_RTOL):
             out.append(f"energy check {k}: stored {check[k]!r}, its runs give {again and again[k]!r}")
     return out
 
