@@ -87,12 +87,12 @@ class Problem:
     walk_bounds
         Whether no off-diagonal coefficient of the infinite element lattice's C^-1 is positive
         (non-periodic, homogeneous or graded with k in ``WALK_EXPONENTS``).
-        Then C^-1 is c0 (I - P) with P a transient random walk, and for every contact set S,
-        C_SS^-1 has no positive off-diagonal entry and positive row sums, so the absolute row
-        sums of C_SS^-1 are at most twice its diagonal (at most c0, the lattice's), and for a
-        free cell f the row C_fS C_SS^-1 is the walk's distribution of where it first meets S,
+        Then C^-1 is D0 (I - P), D0 its diagonal and P a transient random walk, and for every
+        contact set S, C_SS^-1 has no positive off-diagonal entry and positive row sums, so the
+        absolute row sums of C_SS^-1 are at most twice its diagonal (at most D0), and for a free
+        cell f the row C_fS C_SS^-1 is the walk's distribution of where it first meets S,
         nonnegative and summing to at most one: a residual r bounds every pressure's error by
-        2 c0 max |r| and every free displacement's by max |r|.
+        2 D0 max |r| and every free displacement's by max |r| (docs/methods.md).
     """
 
     operator: HalfSpaceOperator

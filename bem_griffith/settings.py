@@ -50,9 +50,10 @@ class GriffithSettings:
         Its premises, that tensions grow as elements leave (C_SS^-1 has no positive
         off-diagonal entry) and that no free gap closes, hold on every contact set when no
         off-diagonal coefficient of the infinite element lattice's C^-1 is positive, which is
-        computed, not proven, for k = 0 ... 0.95 (it fails at k = -0.1; docs/methods.md); and
-        the early decisions and the Eq. 14 cut change no decision.  The fixed-step driver breaks the bound (tested); the
-        stress-intensity criterion is not covered.
+        computed at seven exponents from 0 to 0.95, not proven (it fails at k = -0.1;
+        docs/methods.md); and the early decisions and the Eq. 14 cut change no decision.  The
+        fixed-step driver breaks the bound (tested); the stress-intensity criterion is not
+        covered.
     stop_when_certainly_detached : bool, optional
         Flat faces only (True by default): a cascade at fixed approach d ends as soon as abs(d)
         exceeds (1 + m) times the upper-bound critical approach (Eq. 14) of the remaining
