@@ -32,7 +32,8 @@ __all__ = ["Problem", "build_problem", "estimate_memory_gb", "max_elements_per_r
 #: them (the eigenvalue floor is halved, the inverse diagonal and the energy r.M r doubled)
 SAMPLING_MARGIN = 2.0
 #: the graded exponents k for which no off-diagonal coefficient of the element lattice's C^-1 is
-#: positive, computed in ``tests/test_bem_griffith_ties.py`` (at k = 0 ... 0.95; k = -0.1 fails)
+#: positive, computed in ``tests/test_bem_griffith_ties.py`` (at seven exponents from 0 to 0.95; it
+#: fails at k = -0.1)
 WALK_EXPONENTS = (0.0, 0.95)
 
 
