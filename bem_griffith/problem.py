@@ -31,9 +31,9 @@ __all__ = ["Problem", "build_problem", "estimate_memory_gb", "max_elements_per_r
 #: padded grid, is widened into a bound: the samples leave out aliases and the frequencies between
 #: them (the eigenvalue floor is halved, the inverse diagonal and the energy r.M r doubled)
 SAMPLING_MARGIN = 2.0
-#: the graded exponents k for which no off-diagonal coefficient of the element lattice's C^-1 is
-#: positive, computed in ``tests/test_bem_griffith_ties.py`` (at seven exponents from 0 to 0.95; it
-#: fails at k = -0.1)
+#: the interval of graded exponents k on which no off-diagonal coefficient of the element
+#: lattice's C^-1 is taken to be positive: computed at k = 0, 0.1, 0.25, 0.5, 0.75, 0.9 and 0.95
+#: (``tests/test_bem_griffith_ties.py``), not between them; it fails at k = -0.1
 WALK_EXPONENTS = (0.0, 0.95)
 
 
@@ -86,14 +86,16 @@ class Problem:
         c^T C_SS^-1 c < C_00 with c the influences of S on i (the Schur complement of C on S
         and i is positive), which bounds the error of the displacements by the energy norm.
     walk_bounds
-        Whether no off-diagonal coefficient of the infinite element lattice's C^-1 is positive
-        (non-periodic, homogeneous or graded with k in ``WALK_EXPONENTS``).
-        Then C^-1 is D0 (I - P), D0 its diagonal and P a transient random walk, and for every
-        contact set S, C_SS^-1 has no positive off-diagonal entry and positive row sums, so the
-        absolute row sums of C_SS^-1 are at most twice its diagonal (at most D0), and for a free
-        cell f the row C_fS C_SS^-1 is the walk's distribution of where it first meets S,
-        nonnegative and summing to at most one: a residual r bounds every pressure's error by
-        2 D0 max |r| and every free displacement's by max |r| (docs/methods.md).
+        Whether the kernel lies where no off-diagonal coefficient of the infinite element
+        lattice's C^-1 is taken to be positive: non-periodic, homogeneous or graded with
+        ``WALK_EXPONENTS[0] <= k <= WALK_EXPONENTS[1]``.  Then C^-1 = D0 (I - P), D0 its constant
+        diagonal coefficient and P the step matrix of a transient random walk, and for every
+        contact set S, C_SS^-1 has no positive off-diagonal entry and positive row sums, so each
+        absolute row sum of C_SS^-1 is at most twice its diagonal entry, itself at most D0; and
+        for a free cell f the row C_fS C_SS^-1 is the walk's distribution of where it first
+        meets S, nonnegative and summing to less than one.  A CG residual r then bounds every
+        pressure's error by 2 ``inverse_diagonal`` max |r| (at least 2 D0 max |r|) and every free
+        displacement's by max |r|; used with the Fourier preconditioner (docs/methods.md).
     """
 
     operator: HalfSpaceOperator
