@@ -16,6 +16,7 @@ from .kernel import (
     love_square_integral,
     padded_shape,
     point_kernel_transform,
+    zero_mean_image_sum,
 )
 from .operator import HalfSpaceOperator, default_workers
 
@@ -23,6 +24,7 @@ __all__ = [
     "love_square_integral",
     "love_influence",
     "love_influence_periodic",
+    "zero_mean_image_sum",
     "padded_shape",
     "graded_square_integral",
     "graded_influence",

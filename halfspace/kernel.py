@@ -10,6 +10,7 @@ __all__ = [
     "love_square_integral",
     "love_influence",
     "love_influence_periodic",
+    "zero_mean_image_sum",
     "padded_shape",
     "graded_square_integral",
     "graded_influence",
@@ -156,6 +157,44 @@ def love_influence_periodic(n: int, spacing: float, E_star: float, *, images: in
     ValueError
         If ``images`` is not a positive multiple of 4.
     """
+    return zero_mean_image_sum(lambda X, Y: love_square_integral(X, Y, spacing / 2), n, spacing, images=images) / (
+        math.pi * E_star
+    )
+
+
+def zero_mean_image_sum(integral, n: int, spacing: float, *, images: int = 16, k: float = 0.0) -> np.ndarray:
+    """The zero-mean sum of an element integral over the periodic images of an n x n cell.
+
+    The sum over images of a kernel r^-(1+k) diverges, but by a constant over the cell, which the
+    zero mean removes.  Truncated to the cells within M of the home cell, the zero-mean sum
+    still errs by an M^-(1+k) term (the far cells' quadratic term does not average out) and an
+    M^-(2+k) term; sums to M, 2M and 4M (``images`` = 4M) and two Richardson steps remove both
+    (:func:`love_influence_periodic` is this sum of Love's integrals, at k = 0).
+
+    Parameters
+    ----------
+    integral : callable
+        (X, Y) -> the element integral of the kernel seen from the offsets (X, Y), e.g.
+        ``lambda X, Y: love_square_integral(X, Y, spacing / 2)``.
+    n : int
+        Cells per side of the periodic cell, >= 1.
+    spacing : float
+        Side Delta of the square elements, > 0.
+    images : int, optional
+        4M, four times the largest ring of image cells summed; a multiple of 4, >= 4.
+    k : float, optional
+        The kernel's exponent, r^-(1+k), -1 < k < 1; 0 by default.
+
+    Returns
+    -------
+    numpy.ndarray
+        (n, n) array: entry [i, j] is the sum for the offset (i, j) modulo n.
+
+    Raises
+    ------
+    ValueError
+        If ``images`` is not a positive multiple of 4.
+    """
     if images < 4 or images % 4:
         raise ValueError(f"images must be a multiple of 4, >= 4 (got {images})")
     L = n * spacing
@@ -168,12 +207,13 @@ def love_influence_periodic(n: int, spacing: float, E_star: float, *, images: in
         for a in range(-M, M + 1):
             for b in range(-M, M + 1):
                 if max(abs(a), abs(b)) > done:
-                    total += love_square_integral(X + a * L, Y + b * L, spacing / 2)
+                    total += integral(X + a * L, Y + b * L)
         done = M
         sums.append(total - total.mean())
-    r1 = 2.0 * sums[1] - sums[0]  # C + a/M + b/M^2  ->  C - b/(2 M^2)
-    r2 = 2.0 * sums[2] - sums[1]  #                  ->  C - b/(8 M^2)
-    return (4.0 * r2 - r1) / 3.0 / (math.pi * E_star)
+    first, second = 2.0 ** (1.0 + k), 2.0 ** (2.0 + k)
+    r1 = (first * sums[1] - sums[0]) / (first - 1.0)  # C + b/M^(2+k) (times a constant)
+    r2 = (first * sums[2] - sums[1]) / (first - 1.0)
+    return (second * r2 - r1) / (second - 1.0)
 
 
 def padded_shape(nx: int, ny: int) -> tuple[int, int]:

@@ -35,8 +35,9 @@ from halfspace.kernel import (
     graded_influence,
     graded_square_integral,
     love_influence,
-    love_square_integral,
+    love_influence_periodic,
     point_kernel_transform,
+    zero_mean_image_sum,
 )
 
 EXACT = 1e-12  # the smallest tie tolerance: ties to round-off only
@@ -125,6 +126,18 @@ def test_a_cascade_that_leaves_below_its_threshold_breaks_the_bound(monkeypatch)
     assert _bound_failures("star", TAU) != []
 
 
+def _influence_table(k: float, nx: int, ny: int) -> np.ndarray:
+    """The solver's own influence coefficients at unit spacing (E* = 1, or the graded kernel with
+    E0 = c0 = 1), offsets laid out modulo the (2 nx, 2 ny) padded grid."""
+    return love_influence(nx, ny, 1.0, 1.0) if k == 0 else graded_influence(nx, ny, 1.0, 1.0, 1.0, k)
+
+
+def _block(table: np.ndarray, rows: tuple[np.ndarray, np.ndarray], cols: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
+    """The dense block of C between the cells ``rows`` and ``cols`` (index arrays (i, j))."""
+    Mx, My = table.shape
+    return table[(rows[0][:, None] - cols[0][None, :]) % Mx, (rows[1][:, None] - cols[1][None, :]) % My]
+
+
 def _premise(name: str, k: float, holes: float = 0.0, seed: int = 0) -> tuple[float, float, float]:
     """Over the face raster of a built-in scene at N per radius, less a random fraction
     ``holes`` of its cells: the largest off-diagonal entry of C_SS^-1 relative to its largest
@@ -135,16 +148,12 @@ def _premise(name: str, k: float, holes: float = 0.0, seed: int = 0) -> tuple[fl
     settings = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N))
     face = build_problem(builtin_scene(name), settings).face.copy()
     contact = face & (np.random.default_rng(seed).random(face.shape) >= holes)
-    nx, ny = face.shape
-    # the solver's own coefficients, offsets laid out modulo the (2 nx, 2 ny) padded grid
-    table = love_influence(nx, ny, 1.0, 1.0) if k == 0 else graded_influence(nx, ny, 1.0, 1.0, 1.0, k)
-    i, j = np.nonzero(contact)
-    c = table[(i[:, None] - i[None, :]) % (2 * nx), (j[:, None] - j[None, :]) % (2 * ny)]
-    inverse = np.linalg.inv(c)
+    table = _influence_table(k, *face.shape)
+    held = np.nonzero(contact)
+    inverse = np.linalg.inv(_block(table, held, held))
     off = inverse - np.diag(np.diag(inverse))
     x1 = inverse.sum(axis=1)
-    hi, hj = np.nonzero(face & ~contact)
-    hole_displacement = table[(hi[:, None] - i[None, :]) % (2 * nx), (hj[:, None] - j[None, :]) % (2 * ny)] @ x1
+    hole_displacement = _block(table, np.nonzero(face & ~contact), held) @ x1
     largest_hole = float(hole_displacement.max()) if hole_displacement.size else 0.0
     return float(off.max() / np.diag(inverse).max()), float(x1.min() / x1.max()), largest_hole
 
@@ -176,28 +185,14 @@ def _lattice_inverse(k: float, n: int, rings: int = 2) -> np.ndarray:
     """The coefficients of C^-1 on an n x n torus of elements of unit side (E* = 1; for a graded
     body the kernel r^-(1+k) without its constant), entry [i, j] that of the offset (i, j) modulo
     n, from the symbol of the zero-mean image sum of the solver's element integrals over 2, 4 and
-    8 rings of images (two Richardson steps, in rings^-(1+k) and rings^-(2+k)), the mean mode of
-    the inverse set to zero (the lattice symbol is infinite at zero frequency).  By Poisson
+    8 rings of images (``halfspace.kernel.zero_mean_image_sum``), the mean mode of the inverse
+    set to zero (the lattice symbol is infinite at zero frequency).  By Poisson
     summation the torus's coefficients are the infinite lattice's summed over their images n
     apart, so they approach the lattice's like n^-(3-k), the decay of the coefficients."""
-    index = np.arange(n)
-    offsets = np.where(index <= n // 2, index, index - n).astype(float)
-    X, Y = np.meshgrid(offsets, offsets, indexing="ij")
-    total, done, sums = np.zeros((n, n)), -1, []
-    for reach in (rings, 2 * rings, 4 * rings):
-        for a in range(-reach, reach + 1):
-            for b in range(-reach, reach + 1):
-                if max(abs(a), abs(b)) > done:
-                    x, y = X + a * n, Y + b * n
-                    total += love_square_integral(x, y, 0.5) if k == 0 else graded_square_integral(x, y, 0.5, k)
-        done = reach
-        sums.append(total - total.mean())
-    first, second = 2.0 ** (1.0 + k), 2.0 ** (2.0 + k)
-    coarse = (first * sums[1] - sums[0]) / (first - 1.0)
-    fine = (first * sums[2] - sums[1]) / (first - 1.0)
-    periodic = (second * fine - coarse) / (second - 1.0)
     if k == 0:
-        periodic /= np.pi  # Love's coefficients at E* = 1
+        periodic = love_influence_periodic(n, 1.0, 1.0, images=4 * rings)
+    else:
+        periodic = zero_mean_image_sum(lambda X, Y: graded_square_integral(X, Y, 0.5, k), n, 1.0, images=4 * rings, k=k)
     symbol = np.fft.fft2(periodic).real
     with np.errstate(divide="ignore"):
         inverse_symbol = 1.0 / symbol
@@ -235,11 +230,9 @@ def _section_row(k: float, reach: int, offsets) -> np.ndarray:
     with |m|_inf <= reach, at ``offsets``, relative to its diagonal: sections approach the
     lattice as they grow, an independent route to its coefficients."""
     n = 2 * reach + 1
-    table = love_influence(n, n, 1.0, 1.0) if k == 0 else graded_influence(n, n, 1.0, 1.0, 1.0, k)
-    i, j = np.divmod(np.arange(n * n), n)
-    c = table[(i[:, None] - i[None, :]) % (2 * n), (j[:, None] - j[None, :]) % (2 * n)]
+    cells = np.divmod(np.arange(n * n), n)
     centre = reach * n + reach
-    row = np.linalg.solve(c, np.eye(n * n)[centre])
+    row = np.linalg.solve(_block(_influence_table(k, n, n), cells, cells), np.eye(n * n)[centre])
     return np.array([row[(reach + a) * n + reach + b] for a, b in offsets]) / row[centre]
 
 
