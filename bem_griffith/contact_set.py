@@ -189,7 +189,7 @@ def solve_contact_set(
 
         # where the lattice's C^-1 is a random walk's (``Problem.walk_bounds``) the residual's
         # largest entry bounds the errors too, often more tightly than its energy
-        walk = problem.walk_bounds and inverse_diagonal is not None
+        walk_diagonal = inverse_diagonal if problem.walk_bounds else None
 
         def early_stop(
             x: np.ndarray, image: np.ndarray | None, residual_norm: float, residual_energy: float, residual_max: float
@@ -217,11 +217,11 @@ def solve_contact_set(
                 energy_error = max(math.sqrt(SAMPLING_MARGIN * max(residual_energy, 0.0)), 1e-13 * math.sqrt(n / floor))
                 error = min(error, math.sqrt(inverse_diagonal) * energy_error)
                 displacement_error = min(displacement_error, math.sqrt(problem.self_influence) * energy_error)
-            if walk and inverse_diagonal is not None:
+            if walk_diagonal is not None:
                 # |e_i| <= sum_j |(C_SS^-1)_ij| max|r| <= 2 (C_SS^-1)_ii max|r|, and a free cell's
                 # displacement error is a sub-probability average of r (``Problem.walk_bounds``)
                 largest = max(residual_max, 1e-13 * math.sqrt(n))
-                error = min(error, 2.0 * inverse_diagonal * largest)
+                error = min(error, 2.0 * walk_diagonal * largest)
                 displacement_error = min(displacement_error, largest)
             if decide(contact, x, displacement, error, displacement_error):
                 return True

@@ -21,6 +21,14 @@ from bem_griffith.driver import early_decision
 from bem_griffith.linear import conjugate_gradient
 from bem_griffith.stress_intensity import PaperRule
 
+#: the kernels the bounds are checked on: homogeneous, graded with k >= 0 and with k < 0
+MATERIALS = pytest.mark.parametrize(
+    "material",
+    [cs.Homogeneous(0.75, 0.5), cs.PowerLawGraded(1.0, 0.5, 0.3), cs.PowerLawGraded(1.0, 0.5, -0.5)],
+    ids=["homogeneous", "graded k=0.3", "graded k=-0.5"],
+)
+SHAPES = pytest.mark.parametrize("shape", [cs.Circle(1.0), cs.Star(5, 1.0, 0.45)], ids=["circle", "star"])
+
 
 def scene(shape, material=None):
     return cs.Scene(cs.Indenter(shape), material or cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
@@ -38,11 +46,7 @@ def dense_operator(problem):
     return problem.operator.kernel[(rows[:, None] - rows[None, :]) % Mx, (cols[:, None] - cols[None, :]) % My]
 
 
-@pytest.mark.parametrize(
-    "material",
-    [cs.Homogeneous(0.75, 0.5), cs.PowerLawGraded(1.0, 0.5, 0.3), cs.PowerLawGraded(1.0, 0.5, -0.5)],
-    ids=["homogeneous", "graded k=0.3", "graded k=-0.5"],
-)
+@MATERIALS
 def test_eigenvalue_floor_bounds_every_contact_submatrix(material):
     """The smallest eigenvalue of C_SS, for the whole face and for random subsets of it, is
     at least the floor (rigour), and the floor is not wasteful: within a factor 2.5 of the
@@ -61,12 +65,8 @@ def test_eigenvalue_floor_bounds_every_contact_submatrix(material):
     assert np.linalg.norm(C, axis=1).max() <= problem.kernel_norm
 
 
-@pytest.mark.parametrize(
-    "material",
-    [cs.Homogeneous(0.75, 0.5), cs.PowerLawGraded(1.0, 0.5, 0.3), cs.PowerLawGraded(1.0, 0.5, -0.5)],
-    ids=["homogeneous", "graded k=0.3", "graded k=-0.5"],
-)
-@pytest.mark.parametrize("shape", [cs.Circle(1.0), cs.Star(5, 1.0, 0.45)], ids=["circle", "star"])
+@MATERIALS
+@SHAPES
 def test_energy_bounds_hold_for_every_contact_submatrix(material, shape):
     """The bounds behind the early decisions with the Fourier preconditioner M, against dense
     matrices on coarse grids (the sampled symbol is coarsest there), for the whole face and
@@ -105,12 +105,8 @@ def test_energy_bounds_hold_for_every_contact_submatrix(material, shape):
     assert largest_diagonal <= problem.inverse_diagonal <= 2.5 * largest_diagonal
 
 
-@pytest.mark.parametrize(
-    "material",
-    [cs.Homogeneous(0.75, 0.5), cs.PowerLawGraded(1.0, 0.5, 0.3), cs.PowerLawGraded(1.0, 0.5, -0.5)],
-    ids=["homogeneous", "graded k=0.3", "graded k=-0.5"],
-)
-@pytest.mark.parametrize("shape", [cs.Circle(1.0), cs.Star(5, 1.0, 0.45)], ids=["circle", "star"])
+@MATERIALS
+@SHAPES
 def test_max_norm_bounds_hold_for_every_contact_submatrix(material, shape):
     """The bounds the early decisions take from the residual's largest entry where
     ``Problem.walk_bounds`` holds, against dense matrices, for the whole face and random
