@@ -54,6 +54,11 @@ class ContactSolution:
     iterations, residual, converged
         CG iterations of the solve, the larger relative residual of its runs, and whether both
         reached the tolerance.
+    displacement_in_window
+        True when ``displacement_per_approach`` holds C x1 only inside the window the set was
+        solved on (zeros beyond it): a solve stopped early by a decision that needed no gaps,
+        because every free gap is known to be open (``bem_griffith.driver.early_decision``).
+        Such a state only passes on to the next set of its cascade, whose cells lie in the window.
     """
 
     contact: np.ndarray
@@ -64,6 +69,7 @@ class ContactSolution:
     iterations: int
     residual: float
     converged: bool
+    displacement_in_window: bool = False
 
     def pressure(self, approach: float) -> np.ndarray:
         """p = d x1 - xh on S (compressive > 0)."""
@@ -248,15 +254,26 @@ def solve_contact_set(
     )
     if unit.stopped_early:
         counters.record_decided(unit.iterations)
+        in_window = not decided_image and window is not None
+        if decided_image:
+            image = decided_image[0]
+        elif in_window:
+            # the decision asked for no gaps: C x1 on the window, not a whole-grid product
+            assert unit.image is not None and window is not None
+            image = np.zeros(problem.face.shape)
+            image[window.rows, window.cols] = unit.image
+        else:
+            image = image_on_grid(unit)
         return ContactSolution(
             contact.copy(),
             unit.x,
             np.zeros(n),
-            decided_image[0] if decided_image else image_on_grid(unit),
+            image,
             np.zeros(problem.face.shape),
             unit.iterations,
             unit.residual,
             True,
+            displacement_in_window=in_window,
         )
     iterations, residual, converged = unit.iterations, unit.residual, unit.converged
     if problem.flat:

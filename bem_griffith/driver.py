@@ -76,6 +76,8 @@ class PullOutcome:
 def gap_coefficients(problem: Problem, solution: ContactSolution):
     """The free part of the face and its gaps as linear functions of the approach,
     gap(d) = slope d + offset = u(d) - (d - h): (free mask, slope, offset)."""
+    if solution.displacement_in_window:
+        raise ValueError("the gaps of a state decided without them are unknown beyond its window")
     free = problem.face & ~solution.contact
     slope = solution.displacement_per_approach[free] - 1.0
     offset = problem.height[free] - solution.profile_displacement[free]
@@ -158,11 +160,16 @@ def early_decision(
     would after a full solve.  The test is ``decide(contact, x1, displacement, error,
     displacement_error=None)`` (``bem_griffith.contact_set.Decision``): ``error`` bounds each
     pressure's error, ``displacement_error`` each free displacement's (by default
-    ``kernel_norm * error``).  None where it does not apply."""
+    ``kernel_norm * error``); while pulling under ``Problem.walk_bounds`` it asks for no gaps, every
+    free gap being open there.  None where it does not apply."""
     if not (settings.decide_early and problem.flat and isinstance(rule, PaperRule) and approach != 0):
         return None
     threshold = rule.threshold(settings.tie_tolerance)
     gap_tolerance = _gap_tolerance(problem, approach)
+    # where the lattice's C^-1 is a random walk's, a free cell's displacement per approach is the
+    # walk's chance of ever meeting the contact set, below one, so each free gap (1 - u) |d| of
+    # a flat face is open while it is pulled (d < 0): no gap needs checking, nor computing
+    gaps_open = problem.walk_bounds and approach < 0
 
     def decide(
         contact: np.ndarray, x1: np.ndarray, displacement, error: float, displacement_error: float | None = None
@@ -172,7 +179,7 @@ def early_decision(
         if not (distance > 0).any() or np.abs(distance).min() <= abs(approach) * error:
             return False  # nothing certainly leaves (this set may hold), or a tension is too close to call
         free = problem.face & ~contact
-        if not free.any():
+        if gaps_open or not free.any():
             return True
         gap = (displacement()[free] - 1.0) * approach + problem.height[free]
         if displacement_error is None:  # Cauchy-Schwarz on each row of C
@@ -204,10 +211,15 @@ def cascade(
     decide = early_decision(problem, approach, settings, rule)
     for _ in range(4 * problem.face_elements + 10):
         detaching = rule.detaching(solution, approach, settings.tie_tolerance)
-        free, slope, offset = gap_coefficients(problem, solution)
-        gap = slope * approach + offset
-        gap_tolerance = _gap_tolerance(problem, approach)
-        attaching = (gap < -gap_tolerance) | ((gap <= gap_tolerance) & (slope * direction < 0))
+        if solution.displacement_in_window:
+            # decided with every free gap known to be open (early_decision): none closes
+            free = problem.face & ~solution.contact
+            attaching = np.zeros(int(free.sum()), bool)
+        else:
+            free, slope, offset = gap_coefficients(problem, solution)
+            gap = slope * approach + offset
+            gap_tolerance = _gap_tolerance(problem, approach)
+            attaching = (gap < -gap_tolerance) | ((gap <= gap_tolerance) & (slope * direction < 0))
         if not detaching.any() and not attaching.any():
             return solution
         contact = solution.contact.copy()

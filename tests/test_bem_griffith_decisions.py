@@ -193,8 +193,10 @@ def test_a_tension_within_its_error_bound_of_sigma_c_leaves_the_pass_undecided(s
 
 def test_a_free_gap_within_its_error_bound_of_closing_leaves_the_pass_undecided(small_flat):
     """A detached cell whose gap is within its error bound (|d| kernel_norm error) of the gap
-    tolerance may re-attach: undecided until the bound is below the gap."""
+    tolerance may re-attach: undecided until the bound is below the gap.  (Without the walk
+    property, e.g. graded k < 0 or periodic, where the gaps are not known to stay open.)"""
     problem, st, rule = small_flat
+    problem = dataclasses.replace(problem, walk_bounds=False)
     d = -1.0
     decide = early_decision(problem, d, st, rule)
     contact = problem.face.copy()
@@ -214,6 +216,60 @@ def test_a_free_gap_within_its_error_bound_of_closing_leaves_the_pass_undecided(
     # a displacement bound of its own (the energy norm's) replaces kernel_norm times the pressures'
     assert not decide(contact, x1, lambda: u1, 0.0, 2 * gap / abs(d))
     assert decide(contact, x1, lambda: u1, error_closing, 0.25 * gap / abs(d))
+
+
+def test_pulled_under_the_walk_property_a_decision_needs_no_gaps(small_flat):
+    """Where C^-1 is a random walk's, every free gap is open while the face is pulled (a free
+    cell's displacement per approach is the walk's chance of meeting S, below one): a decision
+    asks for no displacements then, but still does when pressed (d > 0, never reached by a
+    pass that detaches) or without the walk property."""
+    problem, st, rule = small_flat
+    assert problem.walk_bounds
+    contact = problem.face.copy()
+    contact[tuple(np.argwhere(contact)[0])] = False
+    n = int(contact.sum())
+    threshold = rule.critical_stress * (1 - st.tie_tolerance)
+    asked = []
+
+    def displacement():
+        asked.append(True)
+        return np.zeros(problem.face.shape)  # gaps (u - 1) d wide open at d < 0
+
+    for walk, expect_asked in [(True, False), (False, True)]:
+        p = dataclasses.replace(problem, walk_bounds=walk)
+        x1 = np.full(n, 0.5 * threshold)
+        x1[n // 2] = 2 * threshold  # certainly leaves at d = -1
+        asked.clear()
+        assert early_decision(p, -1.0, st, rule)(contact, x1, displacement, 0.0)
+        assert bool(asked) == expect_asked
+
+
+def test_states_decided_without_gaps_carry_no_gaps_beyond_their_window():
+    """A star at 48 per radius shrinks into windows; its passes decided without gaps keep C x1
+    on their window only (no whole-grid product), never hand such a state to the event search
+    (which would raise), and give the same contact sets as full solves (test below)."""
+    sc = scene(cs.Star(5, 1.0, 0.45))
+    st = settings(48)
+    problem = bg.solver.build_problem(sc, st)
+    seen = []
+    original = bg.contact_set.solve_contact_set
+
+    def spy(*args, **kw):
+        solution = original(*args, **kw)
+        seen.append(solution.displacement_in_window)
+        return solution
+
+    mp = pytest.MonkeyPatch()
+    mp.setattr(bg.driver, "solve_contact_set", spy)
+    try:
+        a = bg.solve(sc, st)
+    finally:
+        mp.undo()
+    assert any(seen) and a.converged
+    state = original(problem, problem.face, st, None, bg.counters.WorkCounters())
+    assert not state.displacement_in_window
+    with pytest.raises(ValueError, match="window"):
+        bg.driver.gap_coefficients(problem, dataclasses.replace(state, displacement_in_window=True))
 
 
 def test_early_decisions_and_local_warm_starts_keep_every_contact_set():
