@@ -157,29 +157,38 @@ def early_decision(
     unfinished solve of a contact set already fixes the cascade's next pass, i.e. every tension
     and every free gap lies farther from its threshold than its error bound, and some element
     certainly leaves.  Then the pass (``cascade``) detaches and attaches exactly the elements it
-    would after a full solve.  The test is ``decide(contact, x1, displacement, error,
-    displacement_error=None)`` (``bem_griffith.contact_set.Decision``): ``error`` bounds each
-    pressure's error, ``displacement_error`` each free displacement's (by default
-    ``kernel_norm * error``); while pulling under ``Problem.walk_bounds`` it asks for no gaps, every
-    free gap being open there.  None where it does not apply."""
+    would after a full solve.  While pulling under ``Problem.walk_bounds`` the test asks for no
+    gaps, every free gap being open there, and only for the tensions at or above the threshold
+    to be certain: the pass may then keep a cell that a full solve would detach, which leaves
+    in a later pass instead, and the cascade ends at the same contact set.  The test is
+    ``decide(contact, x1, displacement, error, displacement_error=None)``
+    (``bem_griffith.contact_set.Decision``): ``error`` bounds each pressure's error,
+    ``displacement_error`` each free displacement's (by default ``kernel_norm * error``).  None
+    where it does not apply."""
     if not (settings.decide_early and problem.flat and isinstance(rule, PaperRule) and approach != 0):
         return None
     threshold = rule.threshold(settings.tie_tolerance)
     gap_tolerance = _gap_tolerance(problem, approach)
-    # where the lattice's C^-1 is a random walk's, a free cell's displacement per approach is the
-    # walk's chance of ever meeting the contact set, below one, so each free gap (1 - u) |d| of
-    # a flat face is open while it is pulled (d < 0): no gap needs checking, nor computing
-    gaps_open = problem.walk_bounds and approach < 0
+    # where the lattice's C^-1 is a random walk's, while a flat face is pulled (d < 0): a free
+    # cell's displacement per approach is the walk's chance of ever meeting the contact set, below
+    # one, so each free gap (1 - u) |d| is open and none needs checking, nor computing; and a
+    # tension only grows as other cells leave, so a cell below the threshold may stay undecided:
+    # if it truly reaches the threshold it leaves in a later pass, and the cascade ends at the
+    # same set (the largest that holds), only the passes that lead there differ
+    walk = problem.walk_bounds and approach < 0
 
     def decide(
         contact: np.ndarray, x1: np.ndarray, displacement, error: float, displacement_error: float | None = None
     ) -> bool:
         tension = -approach * x1  # flat: no profile pressure
         distance = tension - threshold
-        if not (distance > 0).any() or np.abs(distance).min() <= abs(approach) * error:
-            return False  # nothing certainly leaves (this set may hold), or a tension is too close to call
+        leaving = distance >= 0  # as the pass detaches (``PaperRule.detaching``)
+        if not leaving.any():
+            return False  # nothing leaves (this set may hold)
+        if np.abs(distance[leaving] if walk else distance).min() <= abs(approach) * error:
+            return False  # a tension is too close to call
         free = problem.face & ~contact
-        if gaps_open or not free.any():
+        if walk or not free.any():
             return True
         gap = (displacement()[free] - 1.0) * approach + problem.height[free]
         if displacement_error is None:  # Cauchy-Schwarz on each row of C

@@ -51,9 +51,9 @@ class GriffithSettings:
         off-diagonal entry) and that no free gap closes, hold on every contact set when no
         off-diagonal coefficient of the infinite element lattice's C^-1 is positive, which is
         computed at seven exponents from 0 to 0.95, not proven (it fails at k = -0.1;
-        docs/methods.md); and the early decisions and the Eq. 14 cut change no decision.  The
-        fixed-step driver breaks the bound (tested); the stress-intensity criterion is not
-        covered.
+        docs/methods.md); and neither the early decisions nor the Eq. 14 cut changes where a
+        cascade ends.  The fixed-step driver breaks the bound (tested); the stress-intensity
+        criterion is not covered.
     stop_when_certainly_detached : bool, optional
         Flat faces only (True by default): a cascade at fixed approach d ends as soon as abs(d)
         exceeds (1 + m) times the upper-bound critical approach (Eq. 14) of the remaining
@@ -90,7 +90,11 @@ class GriffithSettings:
         without it, the CG residual over a lower bound of C_SS's eigenvalues); only the set
         that holds is solved to ``rtol``.  The decisions are the same as
         after a full solve, so are the contact sets and the curve (forces to the CG tolerance),
-        with fewer CG iterations (``bench_griffith_pulloff.py``).
+        with fewer CG iterations (``bench_griffith_pulloff.py``).  While pulling where
+        ``Problem.walk_bounds`` holds, the gaps are known to be open and are not checked, and
+        only the tensions at or above the threshold must be certain: a pass may keep a cell that
+        a full solve would detach, which leaves a pass later (tensions only grow as cells
+        leave), so each cascade ends at the same contact set.
     local_warm_start : bool, optional
         True by default: a contact set that differs from the previous one by a few cells starts
         CG from the previous pressures corrected on the cells near the change (the residual

@@ -244,6 +244,34 @@ def test_pulled_under_the_walk_property_a_decision_needs_no_gaps(small_flat):
         assert bool(asked) == expect_asked
 
 
+def test_pulled_under_the_walk_property_only_the_leaving_tensions_must_be_certain(small_flat):
+    """One cell certainly above the threshold, another below it by less than its error bound:
+    decided under the walk property (the second, if it truly reaches the threshold, leaves in a
+    later pass), undecided without it.  A cell above the threshold by less than its error bound
+    keeps the pass undecided either way."""
+    problem, st, rule = small_flat
+    d = -1.0
+    contact = problem.face.copy()
+    n = int(contact.sum())
+    threshold = rule.critical_stress * (1 - st.tie_tolerance)
+    margin = 1e-3 * threshold
+    error = 2 * margin / abs(d)
+    x1 = np.full(n, 0.5 * threshold / abs(d))
+    x1[0] = 2 * threshold / abs(d)
+    x1[n // 2] = (threshold - margin) / abs(d)
+
+    def no_displacement():
+        raise AssertionError("no free cell: the gaps are not needed")
+
+    walk = early_decision(problem, d, st, rule)
+    other = early_decision(dataclasses.replace(problem, walk_bounds=False), d, st, rule)
+    assert walk(contact, x1, no_displacement, error)
+    assert not other(contact, x1, no_displacement, error)
+    x1[n // 2] = (threshold + margin) / abs(d)
+    assert not walk(contact, x1, no_displacement, error)
+    assert not other(contact, x1, no_displacement, error)
+
+
 def test_states_decided_without_gaps_carry_no_gaps_beyond_their_window():
     """A star at 48 per radius shrinks into windows; its passes decided without gaps keep C x1
     on their window only (no whole-grid product), never hand such a state to the event search
@@ -274,14 +302,16 @@ def test_states_decided_without_gaps_carry_no_gaps_beyond_their_window():
 
 def test_early_decisions_and_local_warm_starts_keep_every_contact_set():
     """A star (tips peel first, long cascades) and a 4:1 rectangle: with early decisions and
-    local warm starts the same events, solves, contact sets and forces as with every set
-    solved to rtol from the plain warm start (to the CG tolerance), at markedly fewer CG
-    iterations."""
+    local warm starts the same events, contact sets and forces as with every set solved to
+    rtol from the plain warm start (to the CG tolerance), at markedly fewer CG iterations.  A
+    pass decided while pulling under the walk property may keep a cell that a full solve
+    detaches, which then leaves a pass later: each early set holds the full solves' set of the
+    same pass, so the early decisions take at least as many solves, never fewer."""
     for sc, N in [(scene(cs.Star(5, 1.0, 0.45)), 24), (scene(cs.Rectangle(4.0, 1.0)), 12)]:
         a = bg.solve(sc, settings(N))
         b = bg.solve(sc, settings(N, decide_early=False, local_warm_start=False))
         assert a.info["decided_solves"] > 0 and b.info["decided_solves"] == 0
-        assert a.info["events"] == b.info["events"] and a.info["solves"] == b.info["solves"]
+        assert a.info["events"] == b.info["events"] and a.info["solves"] >= b.info["solves"]
         assert np.array_equal(a.curve.contact_area, b.curve.contact_area)
         assert np.array_equal(a.last_stable.contact, b.last_stable.contact)
         assert a.pulloff_force == pytest.approx(b.pulloff_force, rel=1e-9)
