@@ -3,12 +3,12 @@ hard wall on the face, pull-off by continuation; the zero-range limit by extrapo
 
 from __future__ import annotations
 
-from contact_scene import Result, Scene
+from contact_scene import Result, Scene, SceneError
 
 from .minimisers import Minimum, minimise
 from .potentials import Potential, process_zone_length
 from .problem import EnergyProblem, build_problem
-from .settings import EnergySettings, ZeroRangeSettings
+from .settings import EnergySettings, ZeroRangeSettings, default_grid
 from .solver import EnergyInfo, finite_range_grid, pull_off
 from .zero_range import ZeroRangeInfo, richardson, zero_range
 
@@ -44,8 +44,9 @@ def solve(scene: Scene, settings: EnergySettings | ZeroRangeSettings | None = No
         The punch, material, adhesion, loading and outputs.
     settings : bem_energy.EnergySettings or bem_energy.ZeroRangeSettings or None, optional
         The settings of the run; an ``EnergySettings`` given for a zero-range scene becomes the
-        settings of each range of the default sequence, and a ``ZeroRangeSettings`` given for a
-        finite range contributes its ``energy``.  Defaults when None.
+        settings of each range of the default sequence (its grid must then be the default: each
+        range sets its own), and a ``ZeroRangeSettings`` given for a finite range contributes
+        its ``energy``.  Defaults when None.
     callback : callable, optional
         ``callback(approach, force, contact_area)``, called at every recorded point of the curve
         (progress).
@@ -68,6 +69,13 @@ def solve(scene: Scene, settings: EnergySettings | ZeroRangeSettings | None = No
     ad = scene.adhesion
     if ad.work_of_adhesion > 0 and ad.range is None:
         if isinstance(settings, EnergySettings):
+            if settings.grid != default_grid():
+                raise SceneError(
+                    "settings.grid",
+                    "a scene without adhesion.range runs the zero-range sequence, each of whose ranges sets its own "
+                    "grid (ZeroRangeSettings.elements_per_process_zone, minimum_elements_per_radius); pass "
+                    "ZeroRangeSettings, or give adhesion.range to run one finite range on this grid",
+                )
             settings = ZeroRangeSettings(energy=settings)
         return zero_range(scene, settings, callback=callback)
     if isinstance(settings, ZeroRangeSettings):

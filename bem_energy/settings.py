@@ -139,6 +139,13 @@ class EnergySettings:
         check_fields(self, "settings")
 
 
+def default_grid() -> Grid:
+    """``EnergySettings``' default grid."""
+    factory = EnergySettings.__dataclass_fields__["grid"].default_factory
+    assert callable(factory)
+    return factory()
+
+
 #: the force tolerance of a zero-range sequence's ranges, relative to F_A: the smallest path
 #: noise measured (benchmarks/study_energy_noise.py, docs/performance.md)
 PEAK_TOLERANCE = 3e-4
@@ -196,14 +203,14 @@ class ZeroRangeSettings:
         to grid); True by default.
     energy : EnergySettings, optional
         The settings of each range (:func:`sequence_energy_settings` by default); their grid
-        is replaced by each run's.
+        is replaced by each run's, so it must be left at its default.
 
     Raises
     ------
     contact_scene.SceneError
         Naming ``settings.<field>`` and its allowed values, for a value outside them;
         ``settings.ratios`` for fewer than two distinct ratios, or fewer than three with a
-        fitted rate.
+        fitted rate; ``settings.energy.grid`` for a grid other than the default.
     """
 
     ratios: tuple[float, ...] = reals((0.08, 0.04, 0.02, 0.01), gt=0, le=1)
@@ -243,6 +250,15 @@ class ZeroRangeSettings:
 
     def __post_init__(self):
         check_fields(self, "settings")
+        if not isinstance(self.energy, EnergySettings):
+            raise SceneError("settings.energy", "must be a bem_energy.EnergySettings")
+        if self.energy.grid != default_grid():
+            # a grid given here would be replaced by each range's without a word
+            raise SceneError(
+                "settings.energy.grid",
+                "each range of the sequence runs on its own grid (elements_per_process_zone per l_c, at least "
+                "minimum_elements_per_radius per radius); set those instead, and leave the grid at its default",
+            )
         # how many ratios a fit needs depends on the rate: a rule on the sequence, not a range
         rs = self.ratios
         if len(rs) < 2 or len(set(rs)) != len(rs):

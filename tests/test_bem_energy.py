@@ -272,6 +272,22 @@ def test_richardson_recovers_a_known_limit():
     assert est >= 0.5 * abs(F0 - 2.0) > 0
 
 
+def test_a_grid_given_for_a_zero_range_sequence_is_refused_not_ignored():
+    """Each range of a zero-range sequence sets its own grid, so a grid the user gives there
+    would be replaced without a word: refused, naming the field; the default grid passes."""
+    zero_range_scene = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(W))
+    with pytest.raises(cs.SceneError, match=r"settings\.grid.*ZeroRangeSettings"):
+        be.solve(zero_range_scene, be.EnergySettings(grid=cs.Grid(elements_per_radius=8)))
+    with pytest.raises(cs.SceneError, match=r"settings\.energy\.grid"):
+        be.ZeroRangeSettings(energy=be.EnergySettings(grid=cs.Grid(spacing=0.1)))
+    with pytest.raises(cs.SceneError, match=r"settings\.energy:"):
+        be.ZeroRangeSettings(energy=None)
+    assert be.ZeroRangeSettings(energy=be.EnergySettings(steps=30)).energy.steps == 30
+    # a finite range runs on the grid it is given
+    finite = be.solve(circle(range_=0.3), be.EnergySettings(grid=cs.Grid(elements_per_radius=8)))
+    assert finite.grid_spacing == pytest.approx(1.0 / 8)
+
+
 def test_zero_range_settings_need_three_ratios_to_fit_a_rate():
     with pytest.raises(cs.SceneError, match="settings.ratios"):
         be.ZeroRangeSettings(ratios=(0.04, 0.02))
