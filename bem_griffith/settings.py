@@ -123,7 +123,8 @@ class GriffithSettings:
     contact_scene.SceneError
         Naming ``settings.<field>`` and its allowed values, for a value outside them;
         ``settings.grid`` when ``grid`` is not a :class:`~contact_scene.Grid`;
-        ``settings.step`` for the fixed-step driver without a step; ``settings.criterion``
+        ``settings.step`` for the fixed-step driver without a step, or for a step given to the
+        event driver; ``settings.criterion``
         for ``"stress_intensity"`` on a periodic grid.
     """
 
@@ -152,6 +153,13 @@ class GriffithSettings:
         # rules joining two fields, not ranges of one
         if self.driver == "fixed_step" and self.step is None:
             raise SceneError("settings.step", "the fixed-step driver needs step > 0")
+        if self.driver == "event" and self.step is not None:
+            # a step given to the event driver would be ignored without a word
+            raise SceneError(
+                "settings.step",
+                "only the fixed-step driver takes a step (driver = 'fixed_step'); the event driver finds "
+                "every event exactly and takes none",
+            )
         if self.criterion == "stress_intensity" and self.grid.periodic:
             raise SceneError(
                 "settings.criterion",

@@ -343,6 +343,16 @@ def test_coarse_grid_and_memory_are_refused():
         bg.solve(circle_scene(), bg.GriffithSettings(grid=cs.Grid(elements_per_radius=64), max_memory_gb=0.001))
 
 
+def test_a_step_is_taken_by_the_fixed_step_driver_only():
+    """The event driver takes no step: one given to it is refused, not ignored; the fixed-step
+    driver needs one."""
+    with pytest.raises(cs.SceneError, match=r"settings\.step: only the fixed-step driver"):
+        bg.GriffithSettings(step=0.01)
+    with pytest.raises(cs.SceneError, match=r"settings\.step: the fixed-step driver needs"):
+        bg.GriffithSettings(driver="fixed_step")
+    assert bg.GriffithSettings(driver="fixed_step", step=0.01).step == 0.01
+
+
 def test_result_reports_its_work_and_the_discretised_face():
     """The typed counters and the face area that the harness reads instead of ``info``: the
     face area is the rasterised face's (``contact_scene.rasterise``), the whole face is in
