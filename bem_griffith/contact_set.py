@@ -48,7 +48,7 @@ class ContactSolution:
     profile_pressure
         xh on S: C_SS xh = h (zeros on a flat face).
     displacement_per_approach
-        C x1 on the whole grid.
+        C x1 on the whole grid (on the solve's window only where ``displacement_in_window``).
     profile_displacement
         C xh on the whole grid.
     iterations, residual, converged
@@ -56,9 +56,11 @@ class ContactSolution:
         reached the tolerance.
     displacement_in_window
         True when ``displacement_per_approach`` holds C x1 only inside the window the set was
-        solved on (zeros beyond it): a solve stopped early by a decision that needed no gaps,
-        because every free gap is known to be open (``bem_griffith.driver.early_decision``).
-        Such a state only passes on to the next set of its cascade, whose cells lie in the window.
+        solved on (zeros beyond it): a windowed solve stopped early by a decision that needed no
+        gaps, because every free gap is known to be open while pulling under the walk property
+        (``bem_griffith.driver.early_decision``) or the face has no free cell.  Such a state only
+        passes on to the next set of its cascade, whose cells lie in the window; a cascade never
+        returns one (``gap_coefficients`` refuses it).
     """
 
     contact: np.ndarray

@@ -78,7 +78,8 @@ class GriffithSettings:
         ``True`` (default): when the contact set has shrunk into a markedly smaller box of the
         grid (padded FFT size <= 90 %), its solves run on that box's padded grid, with the
         same coefficients C_SS (``HalfSpaceOperator.window``); one full-grid product per solve
-        then gives the gaps of the whole face.  Same contact sets, forces to round-off; it pays
+        then gives the gaps of the whole face (not for the passes decided early while pulling
+        where ``Problem.walk_bounds`` holds, which need no gaps).  Same contact sets, forces to round-off; it pays
         on faces whose contact shrinks early, like a star's, whose tips detach first
         (``bench_griffith_pulloff.py``); circles hardly shrink and are unaffected.
     decide_early : bool, optional
@@ -88,13 +89,14 @@ class GriffithSettings:
         preconditioner, the error's energy norm from the preconditioned residual, times the
         lattice's inverse diagonal for the pressures and sqrt(C_00) for the displacements;
         without it, the CG residual over a lower bound of C_SS's eigenvalues); only the set
-        that holds is solved to ``rtol``.  The decisions are the same as
-        after a full solve, so are the contact sets and the curve (forces to the CG tolerance),
-        with fewer CG iterations (``bench_griffith_pulloff.py``).  While pulling where
-        ``Problem.walk_bounds`` holds, the gaps are known to be open and are not checked, and
-        only the tensions at or above the threshold must be certain: a pass may keep a cell that
-        a full solve would detach, which leaves a pass later (tensions only grow as cells
-        leave), so each cascade ends at the same contact set.
+        that holds is solved to ``rtol``.  While pulling where ``Problem.walk_bounds`` holds (a
+        property of the element lattice computed at seven exponents, not proven), the gaps are
+        known to be open and are not checked, and only the tensions at or above the threshold
+        must be certain: a pass may keep a cell that a full solve would detach, which leaves a
+        pass later (tensions only grow as cells leave), so each cascade ends at the same
+        contact set as with full solves.  Elsewhere each pass's decisions are those of a full
+        solve.  Either way the contact sets and the curve are those of full solves (forces to
+        the CG tolerance), with fewer CG iterations (``bench_griffith_pulloff.py``).
     local_warm_start : bool, optional
         True by default: a contact set that differs from the previous one by a few cells starts
         CG from the previous pressures corrected on the cells near the change (the residual

@@ -221,8 +221,7 @@ def test_a_free_gap_within_its_error_bound_of_closing_leaves_the_pass_undecided(
 def test_pulled_under_the_walk_property_a_decision_needs_no_gaps(small_flat):
     """Where C^-1 is a random walk's, every free gap is open while the face is pulled (a free
     cell's displacement per approach is the walk's chance of meeting S, below one): a decision
-    asks for no displacements then, but still does when pressed (d > 0, never reached by a
-    pass that detaches) or without the walk property."""
+    asks for no displacements then, but still does without the walk property."""
     problem, st, rule = small_flat
     assert problem.walk_bounds
     contact = problem.face.copy()
@@ -274,17 +273,24 @@ def test_pulled_under_the_walk_property_only_the_leaving_tensions_must_be_certai
 
 def test_states_decided_without_gaps_carry_no_gaps_beyond_their_window():
     """A star at 48 per radius shrinks into windows; its passes decided without gaps keep C x1
-    on their window only (no whole-grid product), never hand such a state to the event search
-    (which would raise), and give the same contact sets as full solves (test below)."""
+    on their window only (no whole-grid product), there equal to the whole-grid product (the
+    next set's local warm start reads it), never hand such a state to the event search (which
+    would raise), and give the same contact sets as full solves (test below)."""
     sc = scene(cs.Star(5, 1.0, 0.45))
     st = settings(48)
     problem = bg.solver.build_problem(sc, st)
     seen = []
     original = bg.contact_set.solve_contact_set
 
-    def spy(*args, **kw):
-        solution = original(*args, **kw)
+    def spy(solver_problem, *args, **kw):
+        solution = original(solver_problem, *args, **kw)
         seen.append(solution.displacement_in_window)
+        if solution.displacement_in_window:
+            image = solution.displacement_per_approach
+            exact = solver_problem.operator.apply_masked(solution.pressure_per_approach, solution.contact)
+            inside = image != 0
+            assert inside[solution.contact].all()
+            np.testing.assert_allclose(image[inside], exact[inside], rtol=1e-9, atol=1e-12)
         return solution
 
     mp = pytest.MonkeyPatch()
@@ -306,17 +312,29 @@ def test_early_decisions_and_local_warm_starts_keep_every_contact_set():
     rtol from the plain warm start (to the CG tolerance), at markedly fewer CG iterations.  A
     pass decided while pulling under the walk property may keep a cell that a full solve
     detaches, which then leaves a pass later: each early set holds the full solves' set of the
-    same pass, so the early decisions take at least as many solves, never fewer."""
-    for sc, N in [(scene(cs.Star(5, 1.0, 0.45)), 24), (scene(cs.Rectangle(4.0, 1.0)), 12)]:
+    same pass, so the early decisions take at least as many solves, never fewer; without the
+    walk property (graded k = -0.5) exactly as many."""
+    star_without_walk = scene(cs.Star(5, 1.0, 0.45), cs.PowerLawGraded(1.0, 0.5, -0.5))
+    for sc, N in [(scene(cs.Star(5, 1.0, 0.45)), 24), (scene(cs.Rectangle(4.0, 1.0)), 12), (star_without_walk, 24)]:
         a = bg.solve(sc, settings(N))
         b = bg.solve(sc, settings(N, decide_early=False, local_warm_start=False))
         assert a.info["decided_solves"] > 0 and b.info["decided_solves"] == 0
         assert a.info["events"] == b.info["events"] and a.info["solves"] >= b.info["solves"]
+        problem = bg.solver.build_problem(sc, settings(N))
+        force_rtol = 1e-9
+        if not problem.walk_bounds:
+            assert a.info["solves"] == b.info["solves"]  # every pass decided as a full solve would
+            # the CG tolerance bounds a force's relative error by rtol / (eigenvalue floor x mean
+            # x1), with x1 smallest on the pressed face; twice that for two runs (k < 0 is the
+            # worse conditioned kernel)
+            counters = bg.counters.WorkCounters()
+            pressed = bg.contact_set.solve_contact_set(problem, problem.face, settings(N), None, counters)
+            force_rtol = 2 * settings(N).rtol / (problem.eigenvalue_floor * pressed.pressure_per_approach.mean())
         assert np.array_equal(a.curve.contact_area, b.curve.contact_area)
         assert np.array_equal(a.last_stable.contact, b.last_stable.contact)
-        assert a.pulloff_force == pytest.approx(b.pulloff_force, rel=1e-9)
-        assert a.detachment_approach == pytest.approx(b.detachment_approach, rel=1e-8)
-        assert np.allclose(a.curve.force, b.curve.force, rtol=1e-8, atol=1e-9 * b.pulloff_force)
+        assert a.pulloff_force == pytest.approx(b.pulloff_force, rel=force_rtol)
+        assert a.detachment_approach == pytest.approx(b.detachment_approach, rel=10 * force_rtol)
+        assert np.allclose(a.curve.force, b.curve.force, rtol=10 * force_rtol, atol=force_rtol * b.pulloff_force)
         assert a.iterations < 0.75 * b.iterations
         assert a.converged and b.converged
 
