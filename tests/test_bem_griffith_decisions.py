@@ -271,7 +271,7 @@ def test_pulled_under_the_walk_property_only_the_leaving_tensions_must_be_certai
     assert not other(contact, x1, no_displacement, error)
 
 
-def test_states_decided_without_gaps_carry_no_gaps_beyond_their_window():
+def test_states_decided_without_gaps_carry_no_gaps_beyond_their_window(monkeypatch):
     """A star at 48 per radius shrinks into windows; its passes decided without gaps keep C x1
     on their window only (no whole-grid product), there equal to the whole-grid product (the
     next set's local warm start reads it), never hand such a state to the event search (which
@@ -293,12 +293,8 @@ def test_states_decided_without_gaps_carry_no_gaps_beyond_their_window():
             np.testing.assert_allclose(image[inside], exact[inside], rtol=1e-9, atol=1e-12)
         return solution
 
-    mp = pytest.MonkeyPatch()
-    mp.setattr(bg.driver, "solve_contact_set", spy)
-    try:
-        a = bg.solve(sc, st)
-    finally:
-        mp.undo()
+    monkeypatch.setattr(bg.driver, "solve_contact_set", spy)
+    a = bg.solve(sc, st)
     assert any(seen) and a.converged
     state = original(problem, problem.face, st, None, bg.counters.WorkCounters())
     assert not state.displacement_in_window
