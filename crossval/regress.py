@@ -29,8 +29,8 @@ CASES = {m.name: m.sweeps.regression for m in METHODS.values()}
 #: in the direct solvers.  The energy BEM's minimisers stop at a gradient tolerance, so a change
 #: of round-off alone (its transforms' rounding) moves its values by up to 2e-7 (measured over
 #: the suite); its cases carry 1e-6.  So do the FEM's: its pull-off force and approach come from
-#: a finite difference of energies, whose rounding moved them by 2.2e-7 on a machine with AVX-512
-#: kernels against the one the store was computed on (the stiffness by 1e-10)
+#: a finite difference of energies, whose rounding moves them by up to about 2e-7 between
+#: machines whose linear-algebra kernels round differently (the stiffness by about 1e-10)
 RTOL = 1e-7
 RTOL_BY_METHOD = {"bem_energy": 1e-6, "fem_reference": 1e-6}
 
