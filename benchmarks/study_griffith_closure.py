@@ -10,26 +10,26 @@ paper's cell-stress rule, Eq. 22, keeps a staircase bias) and at corners (where 
 stress-intensity rule of ``bem_griffith.stress_intensity`` lets go too early).  This script
 measures one more candidate, built on the solver's own energy instead of a fitted field.
 
-For a flat punch held at approach d on a contact set S, peeling a layer L of cells releases
-d^2 (K(S) - K(S minus L)) / 2 of elastic energy (K the stiffness, cell area times the sum of
-the pressures per approach x1).  With g the gaps per approach at L once L is peeled, that
+For a flat punch held at approach d on a contact set S, peeling a layer L of cells releases d^2
+(K(S) - K(S minus L)) / 2 of elastic energy (K the stiffness, cell area times the sum of the
+pressures per approach x1).  With g the gaps per approach at L once L is peeled, that
 difference is exactly the sum of x1_i g_i over L (crack closure: the tractions that held L
-close the gaps that open; tests/test_griffith_closure_study.py).  Each front cell's
-share, smoothed by an isotropic Gaussian of width sigma = c sqrt(N) cells (N elements per
-equivalent radius) over the cells of the layer and divided by the smoothed peeled area,
-estimates the local release rate G over d^2 (variant "one layer": L the front layer, the
-contact cells with a 4-neighbour outside S; across a narrow detached region the Gaussian also
-reaches the front on its far side).  A one-sided advance of one cell over-estimates G by a term of order Delta / a
-(the mean of G over the advance); peeling two layers and taking 2 G_1 - G_2 removes it
-(variant "two layers").  A front cell detaches where G >= w.  On a fixed set G is
-proportional to d^2, so each event's approach is exact; the driver below solves every set to
-``RTOL`` with the package's contact solver (no early decisions: the package's driver serves
-the paper's rule), detaches at each pass every front cell whose release is within a relative
-``TIE`` of the threshold w / d^2 (TIE / 2 in the approach, the release growing like d^2; the
-package's ``tie_tolerance`` acts on the stress, which grows like d: without such a tie the cells
-of a symmetric face go one by one in an order set by the solver's round-off, and the pull-off
-moves with it), and stops once the force has fallen to half its largest value (a heuristic
-end: the force only falls during a cascade at a fixed approach).
+close the gaps that open; tests/test_griffith_closure_study.py).  Each front cell's share,
+smoothed by an isotropic Gaussian of width sigma = c sqrt(N) cells (N elements per equivalent
+radius) over the cells of the layer and divided by the smoothed peeled area, estimates the
+local release rate G over d^2 (variant "one layer": L the front layer, the contact cells with a
+4-neighbour outside S; across a narrow detached region the Gaussian also reaches the front on
+its far side).  A one-sided advance of one cell over-estimates G by a term of order Delta / a
+(the mean of G over the advance); peeling two layers and taking 2 G_1 - G_2 removes it (variant
+"two layers").  A front cell detaches where G >= w.  On a fixed set G is proportional to d^2,
+so each event's approach is exact; the driver below solves every set to ``RTOL`` with the
+package's contact solver (no early decisions: the package's driver serves the paper's rule),
+detaches at each pass every front cell whose release is within a relative ``TIE`` of the
+threshold w / d^2 (TIE / 2 in the approach, the release growing like d^2; the package's
+``tie_tolerance`` acts on the stress, which grows like d: without such a tie the cells of a
+symmetric face go one by one in an order set by the solver's round-off, and the pull-off moves
+with it), and stops once the force has fallen to half its largest value (a heuristic end: the
+force only falls during a cascade at a fixed approach).
 
 Each row: the face, the variant, c, N, the pull-off force scaled to the nominal area (F ~
 A^(3/4)) over Kendall's force (circle) or Eq. 13's upper bound (the other faces), the
