@@ -23,13 +23,13 @@ its far side).  A one-sided advance of one cell over-estimates G by a term of or
 (the mean of G over the advance); peeling two layers and taking 2 G_1 - G_2 removes it (variant
 "two layers").  A front cell detaches where G >= w.  On a fixed set G is proportional to d^2,
 so each event's approach is exact; the driver below solves every set to ``RTOL`` with the
-package's contact solver (no early decisions: the package's driver serves the paper's rule),
-detaches at each pass every front cell whose release is within a relative ``TIE`` of the
-threshold w / d^2 (TIE / 2 in the approach, the release growing like d^2; the package's
-``tie_tolerance`` acts on the stress, which grows like d: without such a tie the cells of a
-symmetric face go one by one in an order set by the solver's round-off, and the pull-off moves
-with it), and stops once the force has fallen to half its largest value (a heuristic end: the
-force only falls during a cascade at a fixed approach).
+package's contact solver (no early decisions, which the package's driver takes under the
+paper's rule only), detaches at each pass every front cell whose release is within a relative
+``TIE`` of the threshold w / d^2 (TIE / 2 in the approach, the release growing like d^2; the
+package's ``tie_tolerance`` acts on the stress, which grows like d: without such a tie the
+cells of a symmetric face go one by one in an order set by the solver's round-off, and the
+pull-off moves with it), and stops once the force has fallen to half its largest value (a
+heuristic end: the force only falls during a cascade at a fixed approach).
 
 Each row: the face, the variant, c, N, the pull-off force scaled to the nominal area (F ~
 A^(3/4)) over Kendall's force (circle) or Eq. 13's upper bound (the other faces), the
