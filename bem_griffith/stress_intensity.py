@@ -73,6 +73,7 @@ __all__ = [
     "StressIntensityRule",
     "FrontFit",
     "fit_front",
+    "front_cells",
     "window_depths",
     "detachment_rule",
     "check_supported",
@@ -116,6 +117,13 @@ class PaperRule:
         largest = tension.max() if tension.size else -np.inf
         threshold = self.threshold(tie_tolerance)
         return tension >= threshold if largest >= threshold else np.zeros(tension.shape, bool)
+
+
+def front_cells(contact: np.ndarray) -> np.ndarray:
+    """The front of a contact set: its cells with a 4-neighbour outside it (or off the grid)."""
+    padded = np.pad(contact, 1)  # cells outside the grid are outside the contact set
+    eroded = ndimage.binary_erosion(padded, structure=ndimage.generate_binary_structure(2, 1))[1:-1, 1:-1]
+    return contact & ~eroded
 
 
 def window_depths(elements_per_radius: float) -> tuple[float, float, float]:
@@ -198,9 +206,7 @@ def fit_front(
     x1 = np.zeros(contact.shape)
     x1[contact] = pressure_per_approach
     in_window = contact & (depth >= inner) & (depth <= outer) & (x1 > 0)
-    # front: contact cells with a 4-neighbour outside the contact set (or the grid)
-    eroded = ndimage.binary_erosion(padded, structure=ndimage.generate_binary_structure(2, 1))[1:-1, 1:-1]
-    front = contact & ~eroded
+    front = front_cells(contact)
     front_idx = np.flatnonzero(front[contact])
     empty = FrontFit(np.zeros(0, int), np.zeros(0), np.zeros(0))
     if not in_window.any() or front_idx.size == 0:

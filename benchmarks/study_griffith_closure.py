@@ -56,26 +56,21 @@ from pathlib import Path
 
 import _timing
 import numpy as np
-from scipy import ndimage, signal
+from scipy import signal
 
 import bem_griffith as bg
 import contact_scene as cs
 from bem_griffith.contact_set import ContactSolution, solve_contact_set
 from bem_griffith.counters import WorkCounters
 from bem_griffith.problem import Problem, build_problem
+from bem_griffith.stress_intensity import front_cells
 from contact_scene import theory as T
 
 HEADERS = ["face", "variant", "c", "N/radius", "F_A ratio", "passes", "events", "cpu s", "note"]
 RTOL = 1e-9
 TIE = 1e-6
 VARIANTS = ("one layer", "two layers")
-FOUR = ndimage.generate_binary_structure(2, 1)
 CACHE = Path(__file__).resolve().parent / ".closure_cache"
-
-
-def front_of(contact: np.ndarray) -> np.ndarray:
-    """The contact cells with a 4-neighbour outside the contact set (or off the grid)."""
-    return contact & ndimage.binary_dilation(~contact, FOUR, border_value=1)
 
 
 def closure_shares(problem: Problem, solution: ContactSolution, layer: np.ndarray, settings) -> np.ndarray:
@@ -101,7 +96,7 @@ def release_per_approach_squared(problem, solution, settings, sigma: float, vari
     """G / d^2 at each front cell of ``solution`` (zero elsewhere); None when peeling the front
     would leave no contact."""
     contact = solution.contact
-    front = front_of(contact)
+    front = front_cells(contact)
     kernel = gaussian(sigma)
 
     def smoothed(layer):
@@ -118,7 +113,7 @@ def release_per_approach_squared(problem, solution, settings, sigma: float, vari
     one = smoothed(front)
     if variant == "one layer":
         return np.where(front, one, 0.0)
-    both = front | front_of(contact & ~front)
+    both = front | front_cells(contact & ~front)
     if both.sum() == contact.sum():
         return np.where(front, one, 0.0)
     return np.where(front, 2.0 * one - smoothed(both), 0.0)

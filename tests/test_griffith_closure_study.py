@@ -17,6 +17,7 @@ import contact_scene as cs
 from bem_griffith.contact_set import solve_contact_set
 from bem_griffith.counters import WorkCounters
 from bem_griffith.problem import build_problem
+from bem_griffith.stress_intensity import front_cells
 
 ROOT = Path(__file__).resolve().parents[1]
 KENDALL = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
@@ -72,8 +73,8 @@ def test_closure_shares_sum_to_the_stiffness_lost(scene, contact):
     times the gaps that open there add up to exactly that (Schur complement identity)."""
     problem, settings, solution = _solved(scene, 16, contact)
     for layer in (
-        study.front_of(solution.contact),
-        study.front_of(solution.contact & ~study.front_of(solution.contact)),
+        front_cells(solution.contact),
+        front_cells(solution.contact & ~front_cells(solution.contact)),
     ):
         shares = study.closure_shares(problem, solution, layer, settings)
         peeled = solve_contact_set(problem, solution.contact & ~layer, settings, solution, WorkCounters())
@@ -87,7 +88,7 @@ def _whole_front_release(problem, settings, solution, layers):
     """G / d^2 of the whole front with ``layers`` layers peeled at once."""
     peel = np.zeros_like(solution.contact)
     for _ in range(layers):
-        peel |= study.front_of(solution.contact & ~peel)
+        peel |= front_cells(solution.contact & ~peel)
     shares = study.closure_shares(problem, solution, peel, settings)
     return 0.5 * shares.sum() / (peel.sum() * problem.cell_area)
 
@@ -117,7 +118,7 @@ def test_the_studys_release_is_the_whole_fronts_under_a_uniform_kernel(monkeypat
     release = study.release_per_approach_squared(problem, solution, settings, 1.0, variant)
     one = _whole_front_release(problem, settings, solution, 1)
     expected = one if variant == "one layer" else 2 * one - _whole_front_release(problem, settings, solution, 2)
-    front = study.front_of(solution.contact)
+    front = front_cells(solution.contact)
     assert np.allclose(release[front], expected, rtol=1e-12, atol=0)
     assert np.all(release[~front] == 0)
 
