@@ -1,6 +1,7 @@
 """Cost of a full Pohrt-Popov pull-off, in matvec-equivalents measured in the same run.
 
     python benchmarks/bench_griffith_pulloff.py [--star512] [--update]
+    python benchmarks/bench_griffith_pulloff.py --ties [--update]
 
 For each case: median wall and CPU time of the pull-off, the median time of one bare padded
 FFT convolution (scipy.fft rfft2 -> multiply -> irfft2) at the same padded size, the ratio of
@@ -13,11 +14,11 @@ moves it at its own level, and a larger tie tolerance tau within the factor [1 -
 symbol has negative modes, so the preconditioner must be the lattice's) and a star, whose tips
 detach first so that its later solves fit into smaller windows (the rows "every set to rtol"
 and "plain warm start" switch off the early decisions and the local warm start, "neither" both
-of them).  ``--star512`` adds the
-paper's size, the five-ray star on a 512^2 grid over its bounding box (long), as it is and with
-tie tolerances 1e-3 and 1e-2.  A third table pulls the suite's flat faces with the default tie
-tolerance and with 1e-3, alternated: the CPU time of each and how far F_A, the approach at F_A
-and the detachment approach moved.  ``--update`` writes docs/performance_griffith_pulloff.json,
+of them).  ``--star512`` adds the paper's size, the five-ray star on a 512^2 grid over its
+bounding box (long), as it is and with tie tolerances 1e-3 and 1e-2.  A third table pulls seven
+of the suite's flat faces with the default tie tolerance and with 1e-3, alternated: the CPU time
+and the work of each and how far F_A, the approach at F_A and the detachment approach moved
+(``--ties``: that table alone).  ``--update`` writes docs/performance_griffith_pulloff.json,
 docs/performance_griffith_choices.json and docs/performance_griffith_ties.json (rendered into
 docs/performance.md by ``python benchmarks/docs_tables.py``).
 
@@ -193,17 +194,23 @@ def main(star512=False, update=False):
     if update:
         _timing.write_doc_table("performance_griffith_choices", CHOICE_HEADERS, choices, record)
     print()
-    ties = tie_table()
+    ties(update, record)
+
+
+def ties(update: bool, record: dict | None = None) -> None:
+    """The tie table, written to docs/performance_griffith_ties.json with ``update``."""
+    rows = tie_table()
     if update:
-        _timing.write_doc_table("performance_griffith_ties", TIE_HEADERS, ties, record)
+        _timing.write_doc_table("performance_griffith_ties", TIE_HEADERS, rows, record or _timing.provenance_record())
 
 
-#: the tie tolerance of the merged runs: F_A and the detachment approach within 0.1 % below the
-#: exact pull's (the bound), against the Griffith BEM's error bars of about a per cent
+#: the tie tolerance of the merged runs: F_A and the detachment approach within a relative tau
+#: below the exact pull's (the bound), tau far below the faces' discretisation errors
 MERGED_TIES = 1e-3
-#: the suite's flat faces (the bound's premises hold on each: flat, pulled without turning points,
-#: homogeneous or 0 <= k <= 0.95) and the resolutions of the tie table: the star at about the
-#: finest-but-one of its reference sweep, the others at 64 per radius, the circles at 128
+#: seven of the suite's flat faces (the bound's premises hold on each: flat, pulled without turning
+#: points, homogeneous or 0 <= k <= 0.95, not periodic) and the resolutions of the tie table: the
+#: star at about the finest-but-one of its reference sweep, the others at 64 per radius, the
+#: circles at 128
 TIE_FACES = [
     ("kendall_circle", 128),
     ("graded_circle_k0.5", 128),
@@ -213,13 +220,22 @@ TIE_FACES = [
     ("two_circles", 64),
     ("star", 90),
 ]
+#: alternated pairs of runs per face (the CPU times are their medians): short runs vary more
+TIE_ROUNDS = 3
+
+
+def _tau(value: float) -> str:
+    return np.format_float_scientific(value, trim="-", exp_digits=1)
+
+
 TIE_HEADERS = [
     "face",
     "N/radius",
-    f"cpu s, tau {bg.GriffithSettings().tie_tolerance:g} (default)",
-    f"cpu s, tau {MERGED_TIES:g}",
-    "ratio",
-    "events",
+    f"cpu s, tau {_tau(bg.GriffithSettings().tie_tolerance)} (default)",
+    f"cpu s, tau {_tau(MERGED_TIES)}",
+    "cpu merged / default",
+    "matvecs default / merged",
+    "events default / merged",
     "F_A change",
     "d(F_A) change",
     "detachment approach change",
@@ -227,9 +243,10 @@ TIE_HEADERS = [
 
 
 def tie_table() -> list[list]:
-    """The suite's flat faces pulled with ties at round-off (the default) and merged within
-    ``MERGED_TIES``: the CPU time of each (median of two, alternated), the events, and how far
-    F_A, the approach at F_A and the detachment approach moved (relative; the bound covers F_A
+    """Seven of the suite's flat faces pulled with ties at round-off (the default) and merged
+    within ``MERGED_TIES``: the CPU time of each (median of ``TIE_ROUNDS`` alternated pairs), the
+    operator applications and events (which do not vary between runs), and how far F_A, the
+    approach at F_A and the detachment approach moved (merged / default - 1; the bound covers F_A
     and the detachment approach, from below, not the approach at F_A)."""
     from crossval.suite import scene as builtin_scene
 
@@ -242,8 +259,8 @@ def tie_table() -> list[list]:
         }
         cpu: dict[str, list[float]] = {"default": [], "merged": []}
         result = {}
-        for order in (("default", "merged"), ("merged", "default")):
-            for tag in order:
+        for i in range(TIE_ROUNDS):
+            for tag in ("default", "merged") if i % 2 == 0 else ("merged", "default"):
                 _, seconds, result[tag] = time_solve(sc, settings[tag], 1)
                 cpu[tag].append(seconds)
         exact, merged = result["default"], result["merged"]
@@ -255,6 +272,7 @@ def tie_table() -> list[list]:
                 f"{t0:.2f}",
                 f"{t1:.2f}",
                 f"{t1 / t0:.2f}",
+                f"{exact.info['matvecs']} / {merged.info['matvecs']}",
                 f"{exact.info['events']} / {merged.info['events']}",
                 f"{merged.pulloff_force / exact.pulloff_force - 1:+.1e}",
                 f"{merged.pulloff_approach / exact.pulloff_approach - 1:+.1e}",
@@ -369,5 +387,7 @@ if __name__ == "__main__":
         following = sys.argv[sys.argv.index("--baseline") + 1 :]
         revision = following[0] if following and not following[0].startswith("--") else BASELINE
         against_baseline(revision, update="--update" in sys.argv)
+    elif "--ties" in sys.argv:
+        ties(update="--update" in sys.argv)
     else:
         main(star512="--star512" in sys.argv, update="--update" in sys.argv)
