@@ -53,8 +53,8 @@ class GriffithSettings:
         computed at seven exponents from 0 to 0.95, not proven (it fails at k = -0.1;
         docs/methods.md); and neither the early decisions nor the Eq. 14 cut changes where a
         cascade ends.  The fixed-step driver breaks the bound (tested); the stress-intensity
-        criterion is not covered.  What tau = 1e-3 saves and moves on the suite's flat faces
-        and on the paper's 512^2 star is measured in docs/performance.md.
+        criterion is not covered.  What tau = 1e-3 saves and moves on seven of the suite's flat
+        faces and on the paper's 512^2 star is measured in docs/performance.md.
     stop_when_certainly_detached : bool, optional
         Flat faces only (True by default): a cascade at fixed approach d ends as soon as abs(d)
         exceeds (1 + m) times the upper-bound critical approach (Eq. 14) of the remaining
