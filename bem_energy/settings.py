@@ -168,6 +168,11 @@ def sequence_energy_settings() -> EnergySettings:
     return EnergySettings(locate_detachment=False, single_precision_directions=True, peak_tolerance=PEAK_TOLERANCE)
 
 
+#: the smallest quotient of two consecutive process-zone ratios of a zero-range sequence: the
+#: error estimate divides the last step by t^q - 1, which vanishes as the quotient t -> 1
+MIN_RATIO_STEP = 1.5
+
+
 @dataclass(frozen=True)
 class ZeroRangeSettings:
     """The JKR (zero-range) limit of the energy BEM: finite-range runs extrapolated to l_c -> 0.
@@ -185,8 +190,9 @@ class ZeroRangeSettings:
     Parameters
     ----------
     ratios : tuple of float, optional
-        The process-zone ratios l_c / a, each in (0, 1], at least two and distinct (three with
-        a fitted rate); stored in decreasing order.  (0.08, 0.04, 0.02, 0.01) by default.
+        The process-zone ratios l_c / a, each in (0, 1], at least two (three with a fitted rate),
+        consecutive ones apart by a factor of at least ``MIN_RATIO_STEP`` (1.5); stored in
+        decreasing order.  (0.08, 0.04, 0.02, 0.01) by default.
     elements_per_process_zone : float, optional
         Elements per l_c of each run's grid, in [0.25, 64]; 2 by default.  A graded body's
         grids get ``bem_energy.potentials.graded_zone_elements(k)`` times as many (4 at
@@ -209,8 +215,9 @@ class ZeroRangeSettings:
     ------
     contact_scene.SceneError
         Naming ``settings.<field>`` and its allowed values, for a value outside them;
-        ``settings.ratios`` for fewer than two distinct ratios, or fewer than three with a
-        fitted rate; ``settings.energy.grid`` for a grid other than the default.
+        ``settings.ratios`` for fewer than two distinct ratios, fewer than three with a
+        fitted rate, or two closer than a factor ``MIN_RATIO_STEP``; ``settings.energy.grid``
+        for a grid other than the default.
     """
 
     ratios: tuple[float, ...] = reals((0.08, 0.04, 0.02, 0.01), gt=0, le=1)
@@ -269,4 +276,16 @@ class ZeroRangeSettings:
                 "a fitted rate (rate = None) needs at least three process-zone ratios; "
                 "give three or more, or a fixed rate",
             )
-        object.__setattr__(self, "ratios", tuple(sorted(rs, reverse=True)))
+        ordered = tuple(sorted(rs, reverse=True))
+        closest = min(coarse / fine for coarse, fine in zip(ordered, ordered[1:], strict=False))
+        if closest < MIN_RATIO_STEP:
+            # the error estimate rests on the last step F(l_n) - F(l_n-1) over t^q - 1 (t the two
+            # finest ratios' quotient): as t -> 1 the step shrinks into the ranges' path noise and
+            # the estimate says nothing; it is validated on halving sequences
+            raise SceneError(
+                "settings.ratios",
+                f"consecutive process-zone ratios must differ by a factor of at least {MIN_RATIO_STEP:g} "
+                f"(got {closest:.9g}); halving sequences such as 0.08, 0.04, 0.02, 0.01 are what the "
+                "error estimate is validated on",
+            )
+        object.__setattr__(self, "ratios", ordered)

@@ -75,8 +75,8 @@ class Adhesion:
     work_of_adhesion : float
         w (an energy per area), >= 0; 0 is a press and pull without adhesion.
     range : float or None, optional
-        rho, the range of the adhesive potential (a length), > 0; None (the default) for the
-        zero-range limit.
+        rho, the range of the adhesive potential (a length), in [1e-150, 1e150] (its square
+        must stay a floating-point number); None (the default) for the zero-range limit.
     potential : str, optional
         The finite-range potential's form (:class:`bem_energy.Potential`): ``"exponential"``
         (the default) or ``"maugis_dugdale"``.
@@ -88,7 +88,8 @@ class Adhesion:
     """
 
     work_of_adhesion: float = real(ge=0)
-    range: float | None = real(None, gt=0, optional=True)
+    # the potential's curvature is w / rho^2: the square of the range must stay in floating point
+    range: float | None = real(None, ge=1e-150, le=1e150, optional=True)
     potential: str = choice("exponential", ("exponential", "maugis_dugdale"))
 
     def __post_init__(self):
@@ -194,9 +195,11 @@ class Scene:
     Raises
     ------
     contact_scene.SceneError
-        ``indenter``, ``material`` or ``adhesion`` for an object of the wrong type;
-        ``loading.press_approach`` for a curved profile without a press (press_approach > 0
-        or press_force), or with press_approach <= 0.
+        ``indenter``, ``material``, ``adhesion``, ``loading``, ``outputs`` or ``name`` for an
+        object of the wrong type; ``loading.press_approach`` for a curved profile without a
+        press (press_approach > 0 or press_force > 0), with press_approach <= 0, or for a flat
+        face with press_approach < 0; ``loading.press_force`` for a curved profile pressed to
+        a force of 0.
     """
 
     indenter: Indenter
@@ -213,6 +216,25 @@ class Scene:
             raise SceneError("material", f"must be Homogeneous or PowerLawGraded (got {type(self.material).__name__})")
         if not isinstance(self.adhesion, Adhesion):
             raise SceneError("adhesion", "must be an Adhesion")
+        if not isinstance(self.loading, Loading):
+            raise SceneError("loading", f"must be a Loading (got {type(self.loading).__name__})")
+        if not isinstance(self.outputs, Outputs):
+            raise SceneError("outputs", f"must be an Outputs (got {type(self.outputs).__name__})")
+        if not isinstance(self.name, str):
+            raise SceneError("name", f"must be a string (got {type(self.name).__name__})")
+        if (
+            self.indenter.profile.is_flat
+            and self.loading.press_approach is not None
+            and self.loading.press_approach < 0
+        ):
+            # a flat face touches with its whole face at d = 0; at d < 0 it hangs above the surface,
+            # and a pull from there starts detached (the methods disagreed on what that means)
+            raise SceneError(
+                "loading.press_approach",
+                f"must be >= 0 for a flat face, which touches at d = 0 (got {self.loading.press_approach:g})",
+            )
+        if not self.indenter.profile.is_flat and self.loading.press_force == 0:
+            raise SceneError("loading.press_force", "must be > 0 for a curved profile, which touches at one point")
         if (
             not self.indenter.profile.is_flat
             and self.loading.press_approach is None

@@ -274,6 +274,22 @@ KEY_RANGES = [
         [0.0, 1 + 1e-9],
         [1.0, _EPS],
     ),  # fmt: skip
+    (
+        "consecutive l_c / a apart by >= 1.5",
+        lambda v: ZeroRangeSettings(ratios=(0.3, 0.3 / v), rate=0.5),
+        "settings.ratios",
+        [1.5 * (1 - 1e-9), 1.0 + 1e-9],
+        [1.5, 2.0],
+    ),  # fmt: skip
+    (
+        "flat press approach >= 0",
+        lambda v: cs.Scene(
+            cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0), cs.Loading(press_approach=v)
+        ),
+        "loading.press_approach",
+        [-_EPS, -1.0],
+        [0.0, _EPS],
+    ),  # fmt: skip
     ("Taylor-Hood degree 2..4", lambda v: FemSettings(order=v), "fem.order", [1, 5], [2, 4]),
     ("CG tolerance in (0, 1e-2]", lambda v: GriffithSettings(rtol=v), "settings.rtol", [0.0, 0.011], [1e-2, 1e-16]),
 ]
@@ -389,6 +405,42 @@ def test_a_random_value_is_refused_by_name_exactly_when_outside_its_range(case, 
         (lambda: cs.Scene(cs.Circle(1.0), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0)), "indenter"),
         (lambda: cs.Scene(cs.Indenter(cs.Circle(1.0)), 1.0, cs.Adhesion(1.0)), "material"),
         (lambda: cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.3), 1.0), "adhesion"),
+        (lambda: cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0), None), "loading"),
+        (
+            lambda: cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0), cs.Outputs()),
+            "loading",
+        ),
+        (
+            lambda: cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0), outputs=None),
+            "outputs",
+        ),
+        (lambda: cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0), name=5), "name"),
+        # a flat face touches at d = 0: a negative press leaves it hanging above the surface
+        (
+            lambda: cs.Scene(
+                cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0), cs.Loading(press_approach=-0.1)
+            ),
+            "loading.press_approach",
+        ),
+        # a curved profile pressed to no force touches at one point only
+        (
+            lambda: cs.Scene(
+                cs.Indenter(cs.Circle(1.0), cs.Paraboloid(2.0)),
+                cs.Homogeneous(1.0, 0.3),
+                cs.Adhesion(1.0),
+                cs.Loading(press_force=0.0),
+            ),
+            "loading.press_force",
+        ),
+        # a closed ring repeats its first vertex: a zero-length edge
+        (lambda: cs.Polygon(((0, 0), (1, 0), (0, 1), (0, 0))), "indenter.vertices"),
+        (lambda: cs.Polygon(((0, 0), (1, 0), (1, 0), (0, 1))), "indenter.vertices"),
+        # a range whose square leaves floating point (the potential's curvature is w / rho^2)
+        (lambda: cs.Adhesion(1.0, 1e-300), "adhesion.range"),
+        (lambda: cs.Adhesion(1.0, 1e300), "adhesion.range"),
+        # two process zones too close for the last step to say anything
+        (lambda: ZeroRangeSettings(ratios=(0.32, 0.3199999), rate=0.5), "settings.ratios"),
+        (lambda: ZeroRangeSettings(ratios=(0.08, 0.06, 0.03)), "settings.ratios"),
         (
             lambda: (
                 cs.Scene(

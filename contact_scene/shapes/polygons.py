@@ -69,6 +69,16 @@ class PolygonalShape(Shape):
             raise SceneError("indenter.vertices", f"a polygon needs at least 3 (x, y) vertices (got {len(v)})")
         if not np.all(np.isfinite(v)):
             raise SceneError("indenter.vertices", "vertices must be finite numbers")
+        repeated = np.flatnonzero(np.all(v == np.roll(v, -1, axis=0), axis=1))
+        if repeated.size:
+            # a zero-length edge has no normal: the incircle's linear programme and the
+            # rasteriser's edge tests would fail on it deep inside
+            i = int(repeated[0])
+            raise SceneError(
+                "indenter.vertices",
+                f"vertices {i} and {(i + 1) % len(v)} coincide; give each corner once (a closed ring's "
+                "last vertex repeats its first: leave it out)",
+            )
         self._check_simple(v)
         signed_area = shoelace_area(v)
         extent = np.ptp(v, axis=0).max()
