@@ -108,16 +108,20 @@ def rasterise(
     ------
     contact_scene.SceneError
         Naming ``field``: a spacing that is not a finite number > 0, one with fewer than
-        ``min_incircle_cells`` cells across the incircle (the message gives the largest spacing
-        allowed), a raster of more than 2^31 cells, or one in which no cell centre lies in the face.
+        ``min_incircle_cells`` cells across the incircle of the face's smallest separate part
+        (``Shape.smallest_part_incircle``; the message gives the largest spacing allowed), a
+        raster of more than 2^31 cells, or one in which no cell centre lies in the face.
     """
     if not (isinstance(spacing, (int, float)) and math.isfinite(spacing) and spacing > 0):
         raise SceneError(field, f"must be a finite number > 0 (got {spacing!r})")
-    r_in = shape.incircle().radius
+    # every separate part of the face, not only the largest, must be resolved, or a small one is
+    # lost from the raster without a word
+    r_in = shape.smallest_part_incircle().radius
     if 2 * r_in < min_incircle_cells * spacing:
+        which = "its incircle" if r_in == shape.incircle().radius else "the incircle of its smallest separate part"
         raise SceneError(
             field,
-            f"too coarse for the face: {2 * r_in / spacing:.3g} cells across its incircle "
+            f"too coarse for the face: {2 * r_in / spacing:.3g} cells across {which} "
             f"(diameter {2 * r_in:g}); need >= {min_incircle_cells:g}, "
             f"i.e. spacing <= {2 * r_in / min_incircle_cells:g}",
         )

@@ -259,14 +259,14 @@ def _nice(x: float, *, up: bool) -> str:
 
 _PER_RADIUS = "elements per equivalent radius sqrt(A/pi)"
 _N_PER_RADIUS = "N: elements/radius"
-_TOO_COARSE = "coarser grids put fewer than 4 elements across the face's incircle"
+_TOO_COARSE = "coarser grids put fewer than 4 elements across the incircle of the face's smallest separate part"
 
 
 def _coarsest_grid(scene: Scene) -> float:
     from contact_scene.raster import MIN_INCIRCLE_CELLS
 
     shape = scene.indenter.shape
-    return MIN_INCIRCLE_CELLS * shape.equivalent_radius / (2 * shape.incircle().radius)
+    return MIN_INCIRCLE_CELLS * shape.equivalent_radius / (2 * shape.smallest_part_incircle().radius)
 
 
 def _griffith_applies(scene: Scene) -> str | None:

@@ -139,6 +139,31 @@ def test_too_coarse_grid_is_refused():
     cs.rasterise(cs.Circle(1.0), 0.5)
 
 
+@pytest.mark.parametrize(
+    "face",
+    [
+        cs.TwoCircles(1.0, 0.05, 5.0),
+        cs.Union((cs.Circle(1.0), cs.Circle(0.05, (5.0, 0.0)))),
+        cs.Transformed(cs.TwoCircles(1.0, 0.05, 5.0), scale=2.0, rotation_deg=30.0),
+    ],
+    ids=["two_circles", "union", "transformed"],
+)
+def test_a_grid_must_resolve_every_separate_part_of_the_face(face):
+    # the large part's incircle allows spacing 0.5 (four cells across); the small part, 0.1 across
+    # (0.2 scaled), would be lost from such a raster without a word
+    scale = 2.0 if isinstance(face, cs.Transformed) else 1.0
+    small = 0.05 * scale
+    assert face.smallest_part_incircle().radius == pytest.approx(small)
+    assert face.incircle().radius == pytest.approx(scale)
+    with pytest.raises(cs.SceneError, match="smallest separate part"):
+        cs.rasterise(face, 0.5 * scale)
+    raster = cs.rasterise(face, 2 * small / 4)
+    assert raster.mask.sum() * raster.spacing**2 == pytest.approx(face.area, rel=0.05)
+    # overlapping circles are one face: its incircle, the larger circle's, is what must be resolved
+    joined = cs.TwoCircles(1.0, 0.05, 1.0)
+    assert joined.smallest_part_incircle() == joined.incircle()
+
+
 def test_power_law_star_ring_filling_follows_design():
     s = cs.PowerLawStar(8, 0.3, 1.0, samples=128)
     for r in (0.4, 0.6, 0.9):

@@ -137,6 +137,19 @@ class Shape:
         """
         return Incircle(*numerical.raster_incircle(self))
 
+    def smallest_part_incircle(self) -> Incircle:
+        """The incircle of the face's narrowest separate part, which a grid must resolve.
+
+        A grid too coarse for it would lose that part from the raster.  The incircle itself for
+        a connected face; composite faces of separate parts replace it.
+
+        Returns
+        -------
+        Incircle
+            Radius and centre.
+        """
+        return self.incircle()
+
     def ring_filling(self, radius: float, center=None, samples: int = 4096) -> float:
         """phi(r) of Eqs. 25-31: the fraction of a circle that lies in the shape.
 

@@ -87,6 +87,11 @@ class Union(Shape):
             return max((p.incircle() for p in self.parts), key=lambda c: c.radius)
         return Incircle(*numerical.raster_incircle(self))
 
+    def smallest_part_incircle(self):
+        if self._disjoint:
+            return min((p.smallest_part_incircle() for p in self.parts), key=lambda c: c.radius)
+        return self.incircle()
+
     @cached_property
     def area(self):
         if self._disjoint:
@@ -242,3 +247,9 @@ class TwoCircles(Union):
         # a disc wider than the larger circle would have to fit in the union's waist, which is narrower
         big = self.parts[0] if self.radius1 >= self.radius2 else self.parts[1]
         return Incircle(big.radius, big.center)
+
+    def smallest_part_incircle(self):
+        if self.distance < self.radius1 + self.radius2:
+            return self.incircle()  # one connected face
+        small = self.parts[1] if self.radius1 >= self.radius2 else self.parts[0]
+        return Incircle(small.radius, small.center)

@@ -96,3 +96,8 @@ class Transformed(Shape):
         r, c = self.shape.incircle()
         cx, cy = self._forward(*c)
         return Incircle(r * self.scale, (float(cx), float(cy)))
+
+    def smallest_part_incircle(self):
+        r, c = self.shape.smallest_part_incircle()
+        cx, cy = self._forward(*c)
+        return Incircle(r * self.scale, (float(cx), float(cy)))
