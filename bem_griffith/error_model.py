@@ -76,12 +76,19 @@ def _studied_corners(shape) -> bool:
 
 
 def error_bars(
-    scene: Scene, *, spacing: float, face_area: float, graded_criterion: str, criterion: str = "paper"
+    scene: Scene,
+    *,
+    spacing: float,
+    face_area: float,
+    graded_criterion: str,
+    criterion: str = "paper",
+    driver: str = "event",
 ) -> dict[str, ErrorBar]:
     """The bars of a solve of ``scene`` on a grid of element side ``spacing`` whose face has area
-    ``face_area``, with ``graded_criterion`` and ``criterion`` (``GriffithSettings``).  The
-    pull-off bars are the paper criterion's (Eq. 22) model; another detachment criterion has
-    none until a study fits one (its stiffness, from the press, keeps its bar)."""
+    ``face_area``, with ``graded_criterion``, ``criterion`` and ``driver`` (``GriffithSettings``).
+    The pull-off bars are the paper criterion's (Eq. 22) model under the event driver, which the
+    studies ran; another detachment criterion, or the fixed-step driver (whose F_A lags by up to
+    one step's force change), has none (its stiffness, from the press, keeps its bar)."""
     shape, profile = scene.indenter.shape, scene.indenter.profile
     k = float(getattr(scene.material, "exponent", 0.0))
     N = shape.equivalent_radius / spacing
@@ -90,7 +97,7 @@ def error_bars(
     bars: dict[str, ErrorBar] = {}
     if not profile.is_flat:
         # the stiffness of a curved profile is the pressed contact's, which the study does not cover
-        if k == 0:
+        if k == 0 and driver == "event":
             bars["pulloff_force"] = ErrorBar(
                 SPHERE_FORCE_C / N, f"{SPHERE_FORCE_C:g}/N at N = {N:.3g} (JKR sphere, docs/accuracy.md)"
             )
@@ -98,7 +105,7 @@ def error_bars(
     bars["stiffness"] = _bar(
         "stiffness", N, defect, (1 + k) / 2, source="flat circle, square, graded circle, the suite's other faces"
     )
-    if scene.adhesion.work_of_adhesion == 0 or criterion != "paper":
+    if scene.adhesion.work_of_adhesion == 0 or criterion != "paper" or driver != "event":
         return bars
     if k == 0:
         if circle:

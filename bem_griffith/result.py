@@ -119,7 +119,7 @@ def assemble_result(
     curve = recorder.curve()
     tensile = -curve.force
     peak = int(np.argmax(tensile))
-    pulloff = float(max(tensile[peak], 0.0))
+    pulloff = float(max(tensile[peak], 0.0)) + 0.0  # never -0.0
     detached = not outcome.final.attached
     messages = list(outcome.messages)
     if not detached and not outcome.reached_user_limit and not outcome.aborted:
@@ -130,6 +130,18 @@ def assemble_result(
     if graded_message is not None:
         messages.append(graded_message)
     converged = counters.unconverged_solves == 0 and counters.unsettled_cascades == 0 and not outcome.aborted
+    if settings.driver == "fixed_step":
+        assert settings.step is not None  # GriffithSettings requires it for this driver
+        # the driver samples the pull every step, so its F_A lags the event driver's by up to the
+        # force one step changes, K step (tests/test_bem_griffith.py); the error model is the
+        # event driver's and gives it no pull-off bars
+        lag = stiffness * settings.step
+        if pulloff <= 0 or lag > 1e-3 * pulloff:
+            messages.append(
+                f"the fixed-step driver's step {settings.step:g} changes the force by up to K step = {lag:.3g} "
+                f"({'no tensile force was recorded' if pulloff <= 0 else f'{lag / pulloff:.2g} of F_A'}): its F_A may "
+                "lag the event driver's by that much; driver = 'event' finds every detachment exactly"
+            )
     if counters.unconverged_solves:
         messages.append(
             f"{counters.unconverged_solves} contact solves did not reach rtol = {settings.rtol:g} "
@@ -184,5 +196,6 @@ def assemble_result(
             face_area=face_elements * problem.spacing**2,
             graded_criterion=settings.graded_criterion,
             criterion=settings.criterion,
+            driver=settings.driver,
         ),
     )

@@ -278,11 +278,14 @@ class StressIntensityRule:
         self._last: tuple[object, FrontFit] | None = None
         self._kernels = _Kernels(depths[2])
         self.fits = 0
+        #: fits that found at least one usable front cell (none: every decision was Eq. 22's)
+        self.usable_fits = 0
 
     def front(self, solution) -> FrontFit:
         if self._last is None or self._last[0] is not solution:
             self.fits += 1
             fit = fit_front(solution.contact, solution.pressure_per_approach, self.spacing, self.depths, self._kernels)
+            self.usable_fits += bool(len(fit.cells))
             self._last = (solution, fit)
         return self._last[1]
 

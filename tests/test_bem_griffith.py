@@ -507,3 +507,20 @@ def test_progress_callback_sees_every_point_of_the_curve():
     )
     assert r.converged and r.detached
     assert seen == list(zip(r.curve.approach, r.curve.force, r.curve.contact_area, strict=True))
+
+
+def test_the_fixed_step_driver_claims_no_pulloff_bar_and_says_when_its_step_is_coarse():
+    # the error model was fitted on the event driver; the fixed-step driver's F_A lags it by up to
+    # the force one step changes (test_fixed_step_converges_to_event_driven)
+    sc = circle_scene()
+    event = run(sc, 8)
+    assert {"pulloff_force", "pulloff_approach"} <= set(event.error_bars)
+    assert not any("fixed-step" in m for m in event.messages)
+    dK = abs(T.kendall_critical_approach(E_star=E_STAR, radius=1.0, work=1.0))
+    # K step against 1e-3 F_A, F_A / K = d_c for the circle: coarse above dK / 1000
+    for step, coarse in [(10 * dK, True), (dK / 2, True), (dK / 2000, False)]:
+        r = run(sc, 8, driver="fixed_step", step=step)
+        assert "pulloff_force" not in r.error_bars and "pulloff_approach" not in r.error_bars
+        assert "stiffness" in r.error_bars
+        assert any("fixed-step driver's step" in m for m in r.messages) == coarse
+        assert r.pulloff_force >= 0.0 and math.copysign(1.0, r.pulloff_force) == 1.0  # never -0.0

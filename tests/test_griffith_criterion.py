@@ -196,3 +196,16 @@ def test_curved_profile_is_refused():
     )
     with pytest.raises(SceneError, match="settings.criterion.*flat"):
         bg.solve(scene, si_settings(8))
+
+
+def test_a_grid_too_coarse_for_the_fit_says_the_result_is_eq22s():
+    # at 8 per radius no front cell has the window's 8 .. 24 cells behind it: every decision falls
+    # back to Eq. 22, and the result must say so rather than pass for the other criterion
+    sc = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
+    coarse = bg.solve(sc, si_settings(8))
+    paper = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=8)))
+    assert coarse.pulloff_force == paper.pulloff_force
+    assert any("found no front cell it could fit" in m for m in coarse.messages)
+    fitted = bg.solve(sc, si_settings(32))
+    assert fitted.pulloff_force != paper.pulloff_force
+    assert not any("found no front cell" in m for m in fitted.messages)
