@@ -471,9 +471,25 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
                 "fem.fields_path", "the scene asks for fields: give FemSettings(fields_path=...) (.vtu or .xdmf)"
             )
         write_fields(settings.fields_path, u, radius=a, approach=d_c, modulus_scale=modulus_scale)
-    curve = Curve(np.array([0.0, d_c, d_c]), np.array([0.0, -F_A, 0.0]), np.array([math.pi * a * a] * 2 + [0.0]))
+    # the flat circle stays in full contact, F = K d, until Griffith's condition at d_c; turning
+    # points before d_c retrace that branch, so only a pull limit short of d_c changes the result
+    limit = scene.loading.pull_limit
+    attached_at_limit = limit is not None and limit > d_c
+    if attached_at_limit:
+        assert limit is not None
+        msgs.append(f"still attached at the pull limit d = {limit:g} (strong adhesion; Griffith's d_c = {d_c:.6g})")
+        end, F_end = limit, K * abs(limit)
+        curve = Curve(np.array([0.0, end]), np.array([0.0, -F_end]), np.array([math.pi * a * a] * 2))
+    else:
+        end, F_end = d_c, F_A
+        curve = Curve(np.array([0.0, d_c, d_c]), np.array([0.0, -F_A, 0.0]), np.array([math.pi * a * a] * 2 + [0.0]))
+    if attached_at_limit:
+        # the largest tension is K |limit| at a given approach: the stiffness's error alone
+        est = {"stiffness": est["stiffness"], "pulloff_force": est["stiffness"]}
+    if scene.outputs.snapshots:
+        msgs.append("fem_reference records no snapshots (it solves the pull-off state only)")
     if callback is not None:
-        callback(d_c, -F_A, math.pi * a * a)
+        callback(end, -F_end, math.pi * a * a)
     log.info(
         "fem_reference: %d dofs, K^ = %.10g, dK^ vce %.10g compliance %s",
         u.dofs,
@@ -483,15 +499,15 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
     )
     return Result(
         method="fem_reference",
-        pulloff_force=F_A,
-        pulloff_approach=d_c,
+        pulloff_force=F_end,
+        pulloff_approach=end,
         stiffness=K,
         converged=solved,
         residual=residual,
         grid_spacing=settings.h_min * a,
         curve=curve if scene.outputs.curve else None,
-        detached=True,
-        detachment_approach=d_c,
+        detached=not attached_at_limit,
+        detachment_approach=None if attached_at_limit else d_c,
         timings=timings,
         accuracy_estimate=max(est.values()),
         messages=tuple(msgs),

@@ -316,3 +316,26 @@ def test_an_inaccurate_linear_solve_is_reported_not_raised(monkeypatch):
     assert not r.converged and r.residual > 0
     assert any("residual" in m for m in r.messages)
     assert not any(c.passed for c in check_results(sc, {"fem_reference": r}))
+
+
+def test_a_pull_limit_short_of_griffiths_approach_ends_attached():
+    # the flat circle stays in full contact, F = K d, until d_c (Eq. 4): a pull limit before it
+    # ends attached at tension K |limit|, which the Griffith BEM reports the same way
+    mat = homogeneous(0.3)
+    full = solved(mat, 2, 2, 1.0, 1.0)
+    d_c = full.detachment_approach
+    limit = 0.5 * d_c
+    sc = dataclasses.replace(scene(mat), loading=cs.Loading(pull_limit=limit), outputs=cs.Outputs(snapshots=(limit,)))
+    r = fr.solve(sc, fr.FemSettings(grading=2, order=2))
+    assert not r.detached and r.detachment_approach is None
+    assert r.pulloff_approach == limit
+    assert r.pulloff_force == pytest.approx(full.stiffness * abs(limit), rel=1e-12)
+    assert r.pulloff_force == pytest.approx(0.5 * full.pulloff_force, rel=1e-12)
+    assert any("still attached at the pull limit" in m for m in r.messages)
+    assert any("no snapshots" in m for m in r.messages)
+    assert set(r.error_bars) == {"stiffness", "pulloff_force"}
+    # a limit beyond d_c changes nothing
+    beyond_limit = dataclasses.replace(sc, loading=cs.Loading(pull_limit=2 * d_c))
+    beyond = fr.solve(beyond_limit, fr.FemSettings(grading=2, order=2))
+    assert beyond.detached and beyond.pulloff_force == full.pulloff_force
+    assert beyond.detachment_approach == full.detachment_approach
