@@ -444,7 +444,10 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
     u = unit_solution(mat, settings)
     K = modulus_scale * a * u.stiffness
     dK = modulus_scale * u.dK_vce  # d(S a K^(a))/da with K^ computed at a = 1 (scale-free)
-    if w > 0:
+    # a stiffness that does not grow with the radius has no Griffith point: that is a failed
+    # solve (a nearly singular system), not a number to take the square root of
+    released = dK > 0 and math.isfinite(dK)
+    if w > 0 and released:
         d_c = -math.sqrt(4 * math.pi * a * w / dK)
     else:
         d_c = 0.0
@@ -455,8 +458,14 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
     timings["error_estimate"] = sum(comparison.timings.values())
     msgs = []
     residual = max(u.residual, comparison.residual)
-    solved = residual < SOLVE_TOLERANCE
-    if not solved:
+    solved = residual < SOLVE_TOLERANCE and released
+    if not released:
+        msgs.append(
+            f"the stiffness's derivative dK/da = {dK:.3g} is not positive: no Griffith point, the pull-off "
+            "is not computed (F_A = 0 and d_c = 0 stand for it) and the solve is not to be trusted"
+        )
+        est = {"stiffness": est["stiffness"]}
+    if residual >= SOLVE_TOLERANCE:
         msgs.append(
             f"the saddle-point solve left a relative residual {residual:.1e} > {SOLVE_TOLERANCE:g} "
             "after every factorisation: the numbers are not to be trusted"

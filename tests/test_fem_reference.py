@@ -339,3 +339,27 @@ def test_a_pull_limit_short_of_griffiths_approach_ends_attached():
     beyond = fr.solve(beyond_limit, fr.FemSettings(grading=2, order=2))
     assert beyond.detached and beyond.pulloff_force == full.pulloff_force
     assert beyond.detachment_approach == full.detachment_approach
+
+
+def test_a_stiffness_that_does_not_grow_with_the_radius_is_reported_not_raised(monkeypatch):
+    """dK/da <= 0 has no Griffith point (a near-singular solve gave one at k = 1e-9 on a coarse
+    mesh, where sqrt of a negative number was raised): converged = False with a message, no
+    pull-off bar, finite numbers, and the harness fails it."""
+    import fem_reference.solver as fs
+    from crossval.compare import check_results
+
+    real = fs.unit_solution
+
+    def negative_release(*args, **kwargs):
+        u = real(*args, **kwargs)
+        return dataclasses.replace(u, dK_vce=-abs(u.dK_vce))
+
+    monkeypatch.setattr(fs, "unit_solution", negative_release)
+    sc = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0))
+    r = fr.solve(sc, fr.FemSettings(grading=2, order=2))
+    assert not r.converged
+    assert any("is not positive" in m for m in r.messages)
+    assert not any("saddle-point" in m for m in r.messages)  # the solve itself met its tolerance
+    assert set(r.error_bars) == {"stiffness"}
+    assert r.pulloff_force == 0.0 and r.pulloff_approach == 0.0
+    assert not any(c.passed for c in check_results(sc, {"fem_reference": r}))
