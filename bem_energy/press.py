@@ -34,6 +34,10 @@ def press(eq: Equilibria, scene: Scene, approach_scale: float) -> tuple[float, M
         lower_d, upper_d = first_touch, first_touch + max(approach_scale, prob.spacing)
         while excess(upper_d) < 0:
             lower_d, upper_d = upper_d, first_touch + 2 * (upper_d - first_touch)
+        if excess(lower_d) >= 0:
+            # a target below what the minimiser resolves at the first touch (its force there is
+            # round-off): that touch is the press, as brentq would find no sign change
+            return lower_d, eq.minimum(state["U"], lower_d, False)
         d0 = optimize.brentq(excess, lower_d, upper_d, xtol=1e-10 * (upper_d - first_touch), rtol=1e-12)
         return d0, eq.minimum(state["U"], d0, False)
     d0 = loading.press_approach if loading.press_approach is not None else 0.0

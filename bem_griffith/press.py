@@ -108,9 +108,12 @@ def pressed_state(
     upper = lowest_height + problem.spacing
     while force_excess(upper) < 0:
         upper = lowest_height + 2 * (upper - lowest_height)
-    approach = optimize.brentq(
-        force_excess, lowest_height + 1e-12 * (upper - lowest_height), upper, xtol=1e-12 * upper, rtol=1e-12
-    )
+    lower = lowest_height + 1e-12 * (upper - lowest_height)
+    if force_excess(lower) >= 0:
+        # a target below the force of the first touch's own resolution: the lowest elements
+        # just touching are the press (brentq needs a sign change it cannot have here)
+        return lower, states[lower]
+    approach = optimize.brentq(force_excess, lower, upper, xtol=1e-12 * upper, rtol=1e-12)
     return approach, states[approach] if approach in states else press_to_approach(
         problem, approach, settings, counters
     )

@@ -385,3 +385,16 @@ def test_graded_process_zone_reduces_to_the_homogeneous_one_at_k0():
         # E0 is scaled by s^k alongside (the same body)
         m2 = cs.PowerLawGraded(3.0 * 1.7**k, 2.0 * 1.7, k)
         assert process_zone_modulus(m2) == pytest.approx(Ek, rel=1e-12)
+
+
+def test_a_press_force_below_what_the_minimiser_resolves_presses_to_the_first_touch():
+    # at the first touch the minimiser's force is round-off, possibly above a tiny target: no
+    # sign change for brentq, and the first touch is the press
+    sc = cs.Scene(
+        cs.Indenter(cs.Circle(1.0), cs.Paraboloid(10.0)),
+        cs.Homogeneous(0.75, 0.5),
+        cs.Adhesion(1.0, 0.05),
+        cs.Loading(press_force=1e-16),
+    )
+    r = be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=16)))
+    assert np.isfinite(r.pulloff_force) and r.pulloff_force > 0

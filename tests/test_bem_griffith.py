@@ -524,3 +524,20 @@ def test_the_fixed_step_driver_claims_no_pulloff_bar_and_says_when_its_step_is_c
         assert "stiffness" in r.error_bars
         assert any("fixed-step driver's step" in m for m in r.messages) == coarse
         assert r.pulloff_force >= 0.0 and math.copysign(1.0, r.pulloff_force) == 1.0  # never -0.0
+
+
+def test_a_press_force_below_the_first_touchs_resolution_presses_to_the_first_touch():
+    # brentq needs a sign change; a target below the force of the lowest elements pressed by
+    # 1e-12 of the bracket has none, and the press is that first touch
+    sc = cs.Scene(
+        cs.Indenter(cs.Circle(1.0), cs.Paraboloid(10.0)),
+        cs.Homogeneous(0.75, 0.5),
+        cs.Adhesion(1.0),
+        cs.Loading(press_force=1e-16),
+    )
+    settings = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=16))
+    pressed = bg.press(sc, settings)
+    lowest = bg.press(dataclasses.replace(sc, loading=cs.Loading(press_force=1e-3)), settings)
+    assert 0 < pressed.force < 1e-3 * lowest.force
+    assert 0 < pressed.contact_area < lowest.contact_area
+    assert bg.solve(sc, settings).converged
