@@ -4,6 +4,7 @@ hard wall on the face, pull-off by continuation; the zero-range limit by extrapo
 from __future__ import annotations
 
 from contact_scene import Result, Scene, SceneError
+from contact_scene.errors import check_type
 
 from .minimisers import Minimum, minimise
 from .potentials import Potential, process_zone_length
@@ -66,6 +67,9 @@ def solve(scene: Scene, settings: EnergySettings | ZeroRangeSettings | None = No
     - Rey, V., Anciaux, G., Molinari, J.-F., "Normal adhesive contact on rough surfaces: efficient algorithm
       for FFT-based BEM resolution", Comput. Mech. 60:69-81 (2017).
     """
+    check_type("scene", scene, Scene)
+    if settings is not None:
+        check_type("settings", settings, (EnergySettings, ZeroRangeSettings))
     ad = scene.adhesion
     if ad.work_of_adhesion > 0 and ad.range is None:
         if isinstance(settings, EnergySettings):

@@ -20,6 +20,7 @@ import time
 
 from contact_scene import Result, Scene
 from contact_scene.discretisation import Grid
+from contact_scene.errors import check_type
 
 from .counters import WorkCounters
 from .driver import pull
@@ -88,7 +89,8 @@ def solve(scene: Scene, settings: GriffithSettings | None = None, *, callback=No
     - Popov, V.L., Pohrt, R., Li, Q., "Strength of adhesive contacts: influence of contact geometry and
       material gradients", Friction 5(3):308-325 (2017).
     """
-    settings = settings or GriffithSettings()
+    check_type("scene", scene, Scene)
+    settings = check_type("settings", settings or GriffithSettings(), GriffithSettings)
     t0 = time.perf_counter()
     problem = build_problem(scene, settings)
     counters = WorkCounters()
@@ -137,7 +139,8 @@ def press(scene: Scene, settings: GriffithSettings | None = None) -> PressResult
     RuntimeError
         If the contact solve does not converge.
     """
-    settings = settings or GriffithSettings()
+    check_type("scene", scene, Scene)
+    settings = check_type("settings", settings or GriffithSettings(), GriffithSettings)
     problem = build_problem(scene, settings)
     approach, state = pressed_state(problem, scene, settings, WorkCounters())
     cell = problem.cell_area

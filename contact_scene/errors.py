@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 import numbers
 
-__all__ = ["SceneError", "check_real", "check_int", "check_choice"]
+__all__ = ["SceneError", "check_real", "check_int", "check_choice", "check_type"]
 
 
 class SceneError(ValueError):
@@ -84,4 +84,16 @@ def check_choice(field: str, value, choices) -> str:
     """Return ``value`` if it is one of the strings ``choices``, or raise SceneError listing them."""
     if not isinstance(value, str) or value not in choices:
         raise SceneError(field, f"must be one of {', '.join(map(repr, sorted(choices)))} (got {value!r})")
+    return value
+
+
+def check_type(field: str, value, expected: type | tuple[type, ...]):
+    """Return ``value`` if it is an instance of ``expected``, or raise SceneError naming the types.
+
+    A solver handed another solver's settings, or a string for a scene, would otherwise fail
+    later with an AttributeError that names neither."""
+    if not isinstance(value, expected):
+        types = expected if isinstance(expected, tuple) else (expected,)
+        names = " or ".join(f"{t.__module__.split('.')[0]}.{t.__name__}" for t in types)
+        raise SceneError(field, f"must be a {names} (got {type(value).__name__})")
     return value

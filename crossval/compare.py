@@ -551,8 +551,17 @@ def compare(
     Raises
     ------
     contact_scene.SceneError
-        ``resolutions`` names an unknown method, or a resolution a method refuses.
+        ``methods`` or ``resolutions`` names an unknown method (``methods``: not a list of
+        names), or a resolution a method refuses.
     """
+    if methods is not None:
+        if isinstance(methods, str) or not all(isinstance(m, str) for m in methods):
+            raise cs.SceneError("methods", f"must be a list of method names (got {methods!r})")
+        unknown_methods = [m for m in methods if m not in METHODS]
+        if unknown_methods:
+            raise cs.SceneError(
+                "methods", f"unknown method(s) {', '.join(unknown_methods)}; available: {', '.join(METHODS)}"
+            )
     chosen = applicable_methods(scene) if methods is None else [METHODS[m] for m in methods]
     skipped = {m.name: m.applies(scene) for m in METHODS.values() if m.applies(scene)}
     own = dict(resolutions or {})

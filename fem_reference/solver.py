@@ -28,6 +28,7 @@ import numpy as np
 from skfem import MeshTri
 
 from contact_scene import Circle, Curve, ErrorBar, Homogeneous, PowerLawGraded, Result, Scene, SceneError, SolverStats
+from contact_scene.errors import check_type
 from contact_scene.validation import check_fields, choice, flag, real, whole
 
 from .model import (
@@ -432,10 +433,11 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
         body with grading > 2; ``fem.fields_path`` when the scene asks for fields and the
         settings give no path.
     """
+    check_type("scene", scene, Scene)
     why = applies(scene)
     if why:
         raise SceneError("indenter.shape" if "circular" in why else "material.exponent", why)
-    settings = settings or FemSettings()
+    settings = check_type("settings", settings or FemSettings(), FemSettings)
     mat, modulus_scale = _material(scene)
     shape = scene.indenter.shape
     assert isinstance(shape, Circle), "applies() admits circles only"

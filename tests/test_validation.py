@@ -16,7 +16,11 @@ import pkgutil
 import pytest
 from hypothesis import given, settings, strategies as st
 
+import bem_energy as be
+import bem_griffith as bg
 import contact_scene as cs
+import crossval
+import fem_reference as fr
 from bem_energy.potentials import Potential
 from bem_energy.settings import EnergySettings, ZeroRangeSettings
 from bem_griffith.settings import GriffithSettings
@@ -394,6 +398,9 @@ def test_a_random_value_is_refused_by_name_exactly_when_outside_its_range(case, 
         assert inside and getattr(built, attribute) == value
 
 
+_KENDALL = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
+
+
 @pytest.mark.parametrize(
     "build, name",
     [
@@ -435,6 +442,21 @@ def test_a_random_value_is_refused_by_name_exactly_when_outside_its_range(case, 
         # a closed ring repeats its first vertex: a zero-length edge
         (lambda: cs.Polygon(((0, 0), (1, 0), (0, 1), (0, 0))), "indenter.vertices"),
         (lambda: cs.Polygon(((0, 0), (1, 0), (1, 0), (0, 1))), "indenter.vertices"),
+        # a transformed or composite face of something that is not a shape, a triangle of a number
+        (lambda: cs.Transformed("circle"), "indenter.shape"),
+        (lambda: cs.Triangle(5), "indenter.vertices"),
+        (lambda: cs.Union(cs.Circle(1.0)), "indenter.parts"),
+        (lambda: cs.Difference(cs.Circle(1.0), cs.Circle(0.5)), "indenter.cuts"),
+        (lambda: cs.Difference(cs.Circle(1.0), (5,)), "indenter.cuts"),
+        # a solver handed another solver's settings, or not a scene
+        (lambda: bg.solve(_KENDALL, EnergySettings()), "settings"),
+        (lambda: bg.press(_KENDALL, FemSettings()), "settings"),
+        (lambda: bg.solve("circle"), "scene"),
+        (lambda: be.solve(_KENDALL, GriffithSettings()), "settings"),
+        (lambda: fr.solve(_KENDALL, GriffithSettings()), "settings"),
+        # the harness asked for a method it does not have, or for a string of letters
+        (lambda: crossval.compare(_KENDALL, methods=["nope"]), "methods"),
+        (lambda: crossval.compare(_KENDALL, methods="bem_griffith"), "methods"),
         # a range whose square leaves floating point (the potential's curvature is w / rho^2)
         (lambda: cs.Adhesion(1.0, 1e-300), "adhesion.range"),
         (lambda: cs.Adhesion(1.0, 1e300), "adhesion.range"),

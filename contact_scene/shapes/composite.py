@@ -63,9 +63,9 @@ class Union(Shape):
     kind = "union"
 
     def _complete(self):
-        parts = tuple(self.parts)
+        parts = tuple(self.parts) if isinstance(self.parts, (tuple, list)) else ()
         if not parts or not all(isinstance(p, Shape) for p in parts):
-            raise SceneError("indenter.parts", "a union needs at least one shape")
+            raise SceneError("indenter.parts", "a union needs a tuple of at least one shape")
         object.__setattr__(self, "parts", parts)
 
     def contains(self, x, y):
@@ -147,7 +147,10 @@ class Difference(Shape):
     def _complete(self):
         if not isinstance(self.base, Shape):
             raise SceneError("indenter.base", "a difference needs a base shape")
-        object.__setattr__(self, "cuts", tuple(self.cuts))
+        cuts = self.cuts if isinstance(self.cuts, (tuple, list)) else None
+        if cuts is None or not all(isinstance(c, Shape) for c in cuts):
+            raise SceneError("indenter.cuts", "must be a tuple of shapes")
+        object.__setattr__(self, "cuts", tuple(cuts))
         if self.area <= 0:
             raise SceneError("indenter.cuts", "the cuts remove the whole face; the shape is empty")
 

@@ -372,6 +372,10 @@ class Triangle(PolygonalShape):
     kind = "triangle"
 
     def _complete(self):
+        if not hasattr(self.vertices, "__len__") or isinstance(self.vertices, str):
+            raise SceneError(
+                "indenter.vertices", "must be a list of 3 [x, y] number pairs (Triangle.equilateral(side) for a side)"
+            )
         if len(self.vertices) != 3:
             raise SceneError("indenter.vertices", f"a triangle needs exactly 3 vertices (got {len(self.vertices)})")
         object.__setattr__(self, "vertices", Polygon(self.vertices).vertices)

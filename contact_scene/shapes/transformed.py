@@ -8,6 +8,7 @@ from functools import cached_property
 
 import numpy as np
 
+from ..errors import SceneError
 from ..validation import flag, point, real
 from .base import Incircle, Shape
 
@@ -37,7 +38,8 @@ class Transformed(Shape):
     Raises
     ------
     contact_scene.SceneError
-        Naming ``scale``, for a scale that is not > 0.
+        Naming ``scale``, for a scale that is not > 0; ``indenter.shape`` for a ``shape`` that
+        is not a Shape.
     """
 
     shape: Shape
@@ -46,6 +48,10 @@ class Transformed(Shape):
     scale: float = real(1.0, gt=0, name="scale")
     about: tuple[float, float] = point((0.0, 0.0), name="about")
     kind = "transformed"
+
+    def _complete(self):
+        if not isinstance(self.shape, Shape):
+            raise SceneError("indenter.shape", f"must be a Shape (got {type(self.shape).__name__})")
 
     @cached_property
     def _matrix(self) -> np.ndarray:
