@@ -207,10 +207,14 @@ def _profile_from_dict(d: dict):
     if kind in ("sphere", "paraboloid"):
         if "profile_radius" not in d:
             raise SceneError("indenter.profile_radius", f"is required for profile {kind!r}")
+        if "half_angle_deg" in d:
+            raise SceneError("indenter.half_angle_deg", f"only applies to a cone, not to profile {kind!r}")
         return (Sphere if kind == "sphere" else Paraboloid)(d["profile_radius"])
     if kind == "cone":
         if "half_angle_deg" not in d:
             raise SceneError("indenter.half_angle_deg", "is required for profile 'cone'")
+        if "profile_radius" in d:
+            raise SceneError("indenter.profile_radius", "only applies to a sphere or paraboloid, not to a cone")
         return Cone(d["half_angle_deg"])
     raise SceneError("indenter.profile", f"unknown profile {kind!r}; one of: cone, flat, paraboloid, sphere")
 
@@ -269,6 +273,8 @@ def scene_from_dict(d: dict, *, base_dir: Path | None = None) -> Scene:
     name = d.get("name", "")
     if not isinstance(name, str):
         raise SceneError("name", "must be a string")
+    if not isinstance(d.get("description", ""), str):
+        raise SceneError("description", "must be a string")
     indenter_table = d["indenter"]
     shape = shape_from_dict(indenter_table, base_dir=base_dir)
     indenter = Indenter(shape, _profile_from_dict(indenter_table))

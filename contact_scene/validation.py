@@ -99,7 +99,8 @@ class FieldCheck:
         if self.kind == "whole":
             return check_int(name, value, lo=lower, hi=upper)
         if self.kind == "reals":
-            if isinstance(value, (str, bytes)) or not hasattr(value, "__iter__"):
+            # an ordered sequence: a dict or a set would give its keys in an order nobody chose
+            if isinstance(value, (str, bytes, dict, set, frozenset)) or not hasattr(value, "__iter__"):
                 raise SceneError(name, f"must be a list of numbers (got {value!r})")
             return tuple(check_real(name, v, lo=lower, hi=upper, lo_open=lower_open, hi_open=upper_open) for v in value)
         return check_real(name, value, lo=lower, hi=upper, lo_open=lower_open, hi_open=upper_open)

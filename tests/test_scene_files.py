@@ -109,6 +109,30 @@ def test_self_intersecting_polygon_and_curved_profile_without_press():
         scene_from_dict(d)
 
 
+@pytest.mark.parametrize(
+    "extra, field",
+    [
+        ({"profile": "cone", "half_angle_deg": 80.0, "profile_radius": 5.0}, "indenter.profile_radius"),
+        ({"profile": "sphere", "profile_radius": 5.0, "half_angle_deg": 80.0}, "indenter.half_angle_deg"),
+    ],
+)
+def test_a_profile_key_of_another_profile_is_refused_not_ignored(extra, field):
+    d = copy.deepcopy(BASE)
+    d["indenter"] = {"shape": "circle", "radius": 1.0, **extra}
+    d["loading"] = {"press_approach": 0.1}
+    with pytest.raises(cs.SceneError) as caught:
+        scene_from_dict(d)
+    assert caught.value.field == field
+
+
+def test_a_description_that_is_not_a_string_is_refused():
+    d = copy.deepcopy(BASE)
+    d["description"] = 5
+    with pytest.raises(cs.SceneError) as caught:
+        scene_from_dict(d)
+    assert caught.value.field == "description"
+
+
 def test_nested_shapes_and_generic_rotation():
     d = copy.deepcopy(BASE)
     d["indenter"] = {

@@ -457,6 +457,9 @@ _KENDALL = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.A
         # the harness asked for a method it does not have, or for a string of letters
         (lambda: crossval.compare(_KENDALL, methods=["nope"]), "methods"),
         (lambda: crossval.compare(_KENDALL, methods="bem_griffith"), "methods"),
+        # turning points are an ordered list, not the keys of a mapping
+        (lambda: cs.Loading(turning_points={-1.0: 2}), "loading.turning_points"),
+        (lambda: cs.Outputs(snapshots={-0.5}), "outputs.snapshots"),
         # a range whose square leaves floating point (the potential's curvature is w / rho^2)
         (lambda: cs.Adhesion(1.0, 1e-300), "adhesion.range"),
         (lambda: cs.Adhesion(1.0, 1e300), "adhesion.range"),
