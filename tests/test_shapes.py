@@ -270,3 +270,15 @@ def test_checked_parameters_are_stored_checked_and_conditional_ones_only_where_t
     # a random brush has no lattice pitch, a regular one no count or seed
     assert len(cs.Brush(1.0, 0.05, layout="random", count=3, pitch=0.0).parts) == 3
     assert len(cs.Brush(1.0, 0.05, count=-1, seed=-1).parts) == 25
+
+
+def test_the_largest_allowed_regular_polygon_and_star_are_built_without_the_pairwise_edge_check():
+    # corners at increasing angles around a centre make a simple polygon; checking every pair of
+    # 100000 edges would need 5e9 pairs (a MemoryError of tens of GiB)
+    polygon = cs.RegularPolygon(100_000, 1.0)
+    assert polygon.area == pytest.approx(math.pi, rel=1e-8)
+    star = cs.Star(10_000, 1.0, 0.5)
+    assert 0 < star.area < math.pi
+    # a polygon the user gives is still checked
+    with pytest.raises(cs.SceneError, match="intersects itself"):
+        cs.Polygon(((0, 0), (1, 1), (1, 0), (0, 1)))

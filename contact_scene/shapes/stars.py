@@ -45,6 +45,7 @@ class Star(PolygonalShape):
     inner_radius: float = real(gt=0, le=lambda star: star.outer_radius)
     rotation_deg: float = real(0.0)
     center: tuple[float, float] = point()
+    simple_by_construction = True
     kind = "star"
 
     @property
