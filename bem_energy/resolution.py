@@ -53,6 +53,11 @@ def unresolved_process_zone(scene: Scene, prob: EnergyProblem, potential: Potent
         return None
     a = scene.indenter.shape.equivalent_radius
     formula = "E* rho^2 / w" if prob.exponent == 0 else f"(c_k E_k rho^2 / w)^(1/(1-k)), k = {prob.exponent:g}"
+    if not lc > 0:
+        return (
+            f"the process zone l_c = {formula} underflows to {lc:g}: no grid resolves it and the result is "
+            "trapped by the mesh; use a longer range, or the zero-range limit (no range)"
+        )
     return (
         f"the grid has {per:.3g} elements per process zone l_c = {lc:.3g} ({formula}, {lc / a:.3g} a); "
         f"the {potential.kind} potential needs at least {need:.3g}, below which the result is trapped by the mesh: "
@@ -115,7 +120,8 @@ def finite_range_grid(scene: Scene, resolution: float | None = None) -> Grid:
     h = min(h, lc / per)
     xmin, ymin, xmax, ymax = shape.bounds
     width = max(xmax - xmin, ymax - ymin)
-    side = math.ceil(width / h)
+    # a process zone that underflows (l_c^(1-k) ~ rho^2 near k = 1) needs an endless grid
+    side = math.ceil(width / h) if h > 0 else math.inf
     if side > MAX_DEFAULT_SIDE:
         lc_min = per * width / MAX_DEFAULT_SIDE
         rho_min = range_for_process_zone(modulus=E, work=potential.work, length=lc_min, exponent=k)

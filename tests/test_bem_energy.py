@@ -398,3 +398,12 @@ def test_a_press_force_below_what_the_minimiser_resolves_presses_to_the_first_to
     )
     r = be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=16)))
     assert np.isfinite(r.pulloff_force) and r.pulloff_force > 0
+
+
+def test_a_process_zone_that_underflows_is_reported_not_divided_by():
+    # near k = 1 the graded zone l_c = (c_k E_k rho^2 / w)^(1/(1-k)) underflows to zero: the
+    # resolution check divided by it (ZeroDivisionError); now the result says no grid resolves it
+    sc = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, 0.99), cs.Adhesion(1.0, 0.05))
+    r = be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=8)))
+    assert not r.converged
+    assert any("underflows" in m for m in r.messages)
