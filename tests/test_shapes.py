@@ -185,6 +185,23 @@ def test_image_mask(tmp_path):
     assert s.incircle().radius == pytest.approx(0.6, abs=0.015)
     with pytest.raises(cs.SceneError, match="cannot read"):
         cs.ImageMask(path=str(tmp_path / "missing.png"), pixel_size=0.01)
+    for bad in (5, None, ""):
+        with pytest.raises(cs.SceneError) as caught:
+            cs.ImageMask(path=bad, pixel_size=0.01)
+        assert caught.value.field == "indenter.path"
+
+
+def test_image_mask_threshold_one_keeps_pure_white_out_of_the_face(tmp_path):
+    # in colour, pure white's luma is 0.299 + 0.587 + 0.114, 0.9999999999999999 in floating point:
+    # with threshold 1 the white background must not become face
+    import matplotlib.image as mpimg
+
+    img = np.ones((40, 40, 3))
+    img[10:30, 15:25] = 0.5
+    p = tmp_path / "grey.png"
+    mpimg.imsave(p, img)
+    s = cs.ImageMask(path=str(p), pixel_size=0.1, threshold=1.0)
+    assert s.area == pytest.approx(20 * 10 * 0.01)
 
 
 @settings(max_examples=40, deadline=None)

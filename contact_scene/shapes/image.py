@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -50,6 +51,8 @@ class ImageMask(Shape):
     kind = "image"
 
     def _complete(self):
+        if not isinstance(self.path, (str, os.PathLike)) or not str(self.path):
+            raise SceneError("indenter.path", f"must be the path of an image file (got {self.path!r})")
         if not np.any(self._mask):
             raise SceneError(
                 "indenter.path",
@@ -68,7 +71,9 @@ class ImageMask(Shape):
             rgb = img[..., :3]
             if img.dtype.kind in "ui" or rgb.max() > 1:
                 rgb = rgb / 255.0
-            img = rgb @ _LUMA
+            # rounded: the weights' product for pure white is 0.9999999999999999, which a threshold
+            # of 1 would count as face
+            img = np.round(rgb @ _LUMA, 12)
         elif img.max() > 1:
             img = img / 255.0
         face = img < self.threshold
