@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -190,9 +191,16 @@ def assert_matches_reference(
         on it plus ``rtol`` (value, reference, difference, tolerance); also for a negative
         ``pulloff_force`` or a curve without tension (with a note on sign conventions).
     ValueError
-        If a quantity given explicitly has no bar in the reference, or ``curve`` is malformed.
+        If a quantity given explicitly has no bar in the reference or is not a finite number,
+        ``curve`` is malformed, or ``rtol`` is not a finite number >= 0.
     """
     __tracebackhide__ = True  # pytest shows the message, not this function's body
+    # a NaN tolerance would make every comparison pass (nan > x is False), a negative one fail
+    if isinstance(rtol, bool) or not isinstance(rtol, numbers.Real) or not (0 <= rtol < math.inf):
+        raise ValueError(f"rtol must be a finite number >= 0 (got {rtol!r})")
+    for name, v in (("pulloff_force", pulloff_force), ("pulloff_approach", pulloff_approach), ("stiffness", stiffness)):
+        if v is not None and (isinstance(v, bool) or not isinstance(v, numbers.Real) or not math.isfinite(v)):
+            raise ValueError(f"{name} must be a finite number (got {v!r})")
     if pulloff_force is not None and pulloff_force < 0:
         raise AssertionError(f"pulloff_force = {pulloff_force:.6g} is negative; it is a magnitude: {_SIGNS}")
     explicit = {

@@ -2,6 +2,7 @@
 
 import dataclasses
 import json
+import math
 import subprocess
 import sys
 from pathlib import Path
@@ -96,6 +97,11 @@ def test_assert_matches_reference_accepts_kendall_and_names_a_mismatch():
         with pytest.raises(AssertionError, match=r"convention is F < 0 in tension") as info:
             crossval.assert_matches_reference(ref, **wrong)
         assert "-100" not in str(info.value)
+    # a NaN tolerance or value would pass every comparison (nan > x is False): refused
+    for bad in (dict(rtol=math.nan), dict(rtol=-0.01), dict(pulloff_force=math.nan), dict(stiffness="5")):
+        with pytest.raises(ValueError, match="finite number"):
+            crossval.assert_matches_reference(ref, **({"pulloff_force": 1.02 * FK} | bad))
+    crossval.assert_matches_reference(ref, pulloff_force=np.float32(FK), rtol=np.float64(0.0))
 
 
 def test_plugin_failure_shows_the_message_not_the_library(pytester):
