@@ -21,6 +21,7 @@ from __future__ import annotations
 import dataclasses
 import logging
 import math
+import os
 import time
 from dataclasses import dataclass
 
@@ -96,7 +97,8 @@ class FemSettings:
     Raises
     ------
     contact_scene.SceneError
-        Naming ``fem.<field>`` and its allowed values, for a value outside them.
+        Naming ``fem.<field>`` and its allowed values, for a value outside them;
+        ``fem.fields_path`` for a path that does not end in .vtu or .xdmf.
     """
 
     grading: float = real(1.0, ge=0.05, le=4.0)
@@ -110,6 +112,16 @@ class FemSettings:
 
     def __post_init__(self):
         check_fields(self, "fem")
+        path = self.fields_path
+        # checked here, not after the solve that would write it
+        if path is not None and (
+            not isinstance(path, (str, os.PathLike)) or os.path.splitext(str(path))[1].lower() not in FIELD_FORMATS
+        ):
+            raise SceneError("fem.fields_path", f"must be a path ending in {' or '.join(FIELD_FORMATS)} (got {path!r})")
+
+
+#: the file formats the fields are written in (by meshio)
+FIELD_FORMATS = (".vtu", ".xdmf")
 
 
 @dataclass(frozen=True, eq=False)

@@ -188,6 +188,11 @@ def test_fields_only_when_asked(tmp_path):
     sc = cs.Scene(cs.Indenter(cs.Circle(1.0)), mat, cs.Adhesion(1.0), outputs=cs.Outputs(fields=True))
     with pytest.raises(cs.SceneError, match="fields_path"):
         fr.solve(sc, fr.FemSettings(grading=2.0))
+    # a path that is not one, or names a format meshio is not asked for, is refused before the solve
+    for bad in (5, str(tmp_path / "f.txt")):
+        with pytest.raises(cs.SceneError) as caught:
+            fr.FemSettings(fields_path=bad)
+        assert caught.value.field == "fem.fields_path"
     path = tmp_path / "f.vtu"
     r = fr.solve(sc, fr.FemSettings(grading=2.0, fields_path=str(path)))
     m = meshio.read(path)
