@@ -125,7 +125,8 @@ class Loading:
     Raises
     ------
     contact_scene.SceneError
-        ``loading.press_force`` when both press_approach and press_force are given; naming
+        ``loading.press_force`` when both press_approach and press_force are given;
+        ``loading.turning_points`` for a turning point at or beyond ``pull_limit``; naming
         ``loading.<field>`` and its allowed range for a value out of that range.
     """
 
@@ -139,6 +140,11 @@ class Loading:
         if self.press_approach is not None and self.press_force is not None:
             raise SceneError("loading.press_force", "give press_approach or press_force, not both")
         check_fields(self, "loading")
+        if self.pull_limit is not None and any(t <= self.pull_limit for t in self.turning_points):
+            # the pull ends at the limit: a turning point at or beyond it would never be reached
+            # by that rule, and the methods would each go there anyway
+            given = ", ".join(f"{t:g}" for t in self.turning_points)
+            raise SceneError("loading.turning_points", f"must lie above pull_limit = {self.pull_limit:g} (got {given})")
 
 
 @dataclass(frozen=True)
