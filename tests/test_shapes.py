@@ -299,3 +299,58 @@ def test_the_largest_allowed_regular_polygon_and_star_are_built_without_the_pair
     # a polygon the user gives is still checked
     with pytest.raises(cs.SceneError, match="intersects itself"):
         cs.Polygon(((0, 0), (1, 1), (1, 0), (0, 1)))
+
+
+def _placed_by_testing_every_pillar(brush: cs.Brush) -> list[tuple[float, float, float]]:
+    """The random placement with its gap test against every pillar placed so far (quadratic)."""
+    from contact_scene.shapes.brush import _ATTEMPTS_PER_PILLAR
+
+    rng = np.random.default_rng(brush.seed)
+    mixed = brush.layout == "mixed"
+    radius, half_side = brush.pillar_radius, brush.side / 2
+    placed: list[tuple[float, float, float]] = []
+    for _ in range(_ATTEMPTS_PER_PILLAR * brush.count):
+        if len(placed) == brush.count:
+            break
+        r = rng.uniform(0.5 * radius, radius) if mixed else radius
+        c = rng.uniform(-half_side + radius, half_side - radius, 2)
+        if all(max(abs(c[0] - q[0]), abs(c[1] - q[1])) > (r + q[2]) * 1.000001 for q in placed):
+            placed.append((float(c[0]), float(c[1]), r))
+    return placed
+
+
+@pytest.mark.parametrize("layout", ["random", "mixed"])
+def test_a_random_brush_places_the_pillars_the_test_against_every_pillar_would(layout):
+    brush = cs.Brush(1.0, 0.012, layout=layout, count=400, seed=3)
+    expected = _placed_by_testing_every_pillar(brush)
+    got = [(p.centroid[0], p.centroid[1]) for p in brush.parts]
+    assert np.allclose(got, [(x, y) for x, y, _ in expected], rtol=0, atol=1e-15)
+    assert brush._disjoint
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.tuples(st.floats(-2, 2), st.floats(-2, 2), st.floats(0.01, 1)), min_size=2, max_size=25))
+def test_bounding_boxes_are_disjoint_exactly_when_every_pair_is(discs):
+    from contact_scene.shapes.composite import _bounding_boxes_disjoint, _pairwise_disjoint
+
+    shapes = [cs.Circle(r, (x, y)) for x, y, r in discs]
+    every_pair = all(
+        _bounding_boxes_disjoint(shapes[i], shapes[j]) for i in range(len(shapes)) for j in range(i + 1, len(shapes))
+    )
+    assert _pairwise_disjoint(shapes) == every_pair
+
+
+def test_touching_bounding_boxes_are_not_disjoint():
+    from contact_scene.shapes.composite import _pairwise_disjoint
+
+    touching = [cs.Square(1.0), cs.Square(1.0, center=(1.0, 0.0)), cs.Square(1.0, center=(5.0, 5.0))]
+    assert not _pairwise_disjoint(touching)
+    assert _pairwise_disjoint([cs.Square(1.0), cs.Square(1.0, center=(1.0 + 1e-12, 0.0))])
+
+
+def test_the_largest_random_brush_is_built():
+    # 1e5 pillars, the documented maximum: the placement and the disjointness test used to be
+    # quadratic (still running after a minute)
+    brush = cs.Brush(1.0, 1e-4, layout="random", count=100_000)
+    assert len(brush.parts) == 100_000 and brush._disjoint
+    assert brush.area == pytest.approx(100_000 * math.pi * 1e-8, rel=1e-12)
