@@ -246,7 +246,9 @@ def test_fem_stiffness_without_the_radius_fails_the_radius_2_circle(monkeypatch)
         "K = modulus_scale * a * u.stiffness",
         "K = modulus_scale * u.stiffness",
     )
-    bad = _checks(sc, {"fem_reference": ns["solve"](sc, settings)})[("fem_reference", "stiffness")]
+    # the mutated module defines its own FemSettings, which its solve checks for
+    mutated_settings = ns["FemSettings"](grading=2.0, order=3)
+    bad = _checks(sc, {"fem_reference": ns["solve"](sc, mutated_settings)})[("fem_reference", "stiffness")]
     assert bad.difference == pytest.approx(-0.5, abs=1e-3) and not bad.passed
 
 
