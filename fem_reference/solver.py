@@ -503,12 +503,11 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
         msgs.append(f"still attached at the pull limit d = {limit:g} (strong adhesion; Griffith's d_c = {d_c:.6g})")
         end, F_end = limit, K * abs(limit)
         curve = Curve(np.array([0.0, end]), np.array([0.0, -F_end]), np.array([math.pi * a * a] * 2))
+        # the largest tension is K |limit| at a given approach: the stiffness's error alone
+        est = {"stiffness": est["stiffness"], "pulloff_force": est["stiffness"]}
     else:
         end, F_end = d_c, F_A
         curve = Curve(np.array([0.0, d_c, d_c]), np.array([0.0, -F_A, 0.0]), np.array([math.pi * a * a] * 2 + [0.0]))
-    if attached_at_limit:
-        # the largest tension is K |limit| at a given approach: the stiffness's error alone
-        est = {"stiffness": est["stiffness"], "pulloff_force": est["stiffness"]}
     if scene.outputs.snapshots:
         msgs.append("fem_reference records no snapshots (it solves the pull-off state only)")
     if callback is not None:
