@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import os
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -119,10 +120,15 @@ def reference(scene_or_name, *, resolution: float = 64) -> Reference:
     ------
     contact_scene.SceneError
         Field ``file`` for an unknown name or an unreadable file, the offending field of an
-        invalid scene file, or field ``scene`` when no registered method can give a reference.
+        invalid scene file, or field ``scene`` for something that is not a scene, name or path,
+        or when no registered method can give a reference.
     RuntimeError
         If the reference solve did not converge (its messages say why).
     """
+    if not isinstance(scene_or_name, (cs.Scene, str, os.PathLike)):
+        raise cs.SceneError(
+            "scene", f"must be a Scene, a built-in scene's name or a scene file's path (got {scene_or_name!r})"
+        )
     scene = scene_or_name if isinstance(scene_or_name, cs.Scene) else load_scene_or_builtin(scene_or_name)
     bounded = reference_method(scene, "bounded")
     table = face_references.for_scene(scene)

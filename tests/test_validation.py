@@ -457,6 +457,7 @@ _KENDALL = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.A
         # the harness asked for a method it does not have, or for a string of letters
         (lambda: crossval.compare(_KENDALL, methods=["nope"]), "methods"),
         (lambda: crossval.compare(_KENDALL, methods="bem_griffith"), "methods"),
+        (lambda: crossval.reference(5), "scene"),
         # the pull ends at its limit: a turning point beyond it is never reached
         (lambda: cs.Loading(turning_points=(-0.5, -3.0), pull_limit=-1.0), "loading.turning_points"),
         # turning points are an ordered list, not the keys of a mapping
