@@ -217,6 +217,18 @@ def build_problem(scene: Scene, settings: GriffithSettings) -> Problem:
     inverse = (
         inverse_lattice_symbol(operator.padded_shape, h, point_kernel) if settings.preconditioner == "fourier" else None
     )
+    scale = float(np.abs(kernel).max())
+    # C_00 ~ h / E*: lengths and moduli whose ratio leaves floating point (the single-precision
+    # preconditioner's range, for the inverse symbol ~ E* / h) cannot be solved in these units
+    if not (0 < scale < math.inf and 0 <= sigma_c < math.inf) or (
+        inverse is not None and not 0 < float(inverse.max()) < math.inf
+    ):
+        raise SceneError(
+            "material",
+            f"the influence coefficients ({scale:.3g} per unit pressure at element side {h:.3g}) or the critical "
+            f"stress ({sigma_c:.3g}) leave the floating-point range in these units: rescale lengths and moduli, "
+            "e.g. to the face's radius and E*",
+        )
     floor = None
     if not periodic:
         # the lattice symbol is positive and smallest at the highest frequencies; the factor 2

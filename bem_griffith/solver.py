@@ -80,7 +80,8 @@ def solve(scene: Scene, settings: GriffithSettings | None = None, *, callback=No
         ``grid.periodic`` (a periodic cell too large, or a graded periodic body),
         ``settings.max_memory_gb`` (a grid beyond the memory limit), ``loading.press_approach``
         (a press that touches nothing), ``settings.graded_criterion`` (a calibrated criterion
-        outside its measured exponents).
+        outside its measured exponents), ``material`` (lengths and moduli whose ratio leaves the
+        floating-point range), ``scene`` or ``settings`` (an object of the wrong type).
 
     References
     ----------

@@ -463,6 +463,21 @@ _KENDALL = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.A
         # turning points are an ordered list, not the keys of a mapping
         (lambda: cs.Loading(turning_points={-1.0: 2}), "loading.turning_points"),
         (lambda: cs.Outputs(snapshots={-0.5}), "outputs.snapshots"),
+        # units whose ratio leaves floating point (the inverse symbol underflowed: ZeroDivisionError)
+        (
+            lambda: bg.solve(
+                cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1e-300, 0.3), cs.Adhesion(1.0)),
+                GriffithSettings(grid=cs.Grid(elements_per_radius=8)),
+            ),
+            "material",
+        ),
+        (
+            lambda: bg.solve(
+                cs.Scene(cs.Indenter(cs.Circle(1e150)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0)),
+                GriffithSettings(grid=cs.Grid(elements_per_radius=8)),
+            ),
+            "material",
+        ),
         # a range whose square leaves floating point (the potential's curvature is w / rho^2)
         (lambda: cs.Adhesion(1.0, 1e-300), "adhesion.range"),
         (lambda: cs.Adhesion(1.0, 1e300), "adhesion.range"),
