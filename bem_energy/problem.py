@@ -129,8 +129,19 @@ class EnergyProblem:
         scale = norm_factor(self.padded[0] * self.padded[1], np.float64)
         inverse = scale / self.symbol
         object.__setattr__(self, "inverse_factor", inverse)
-        object.__setattr__(self, "inverse_factor_single", inverse.astype(np.float32))
-        object.__setattr__(self, "symbol_factor_single", (scale * self.symbol).astype(np.float32))
+        with np.errstate(over="ignore", under="ignore"):
+            inverse_single = inverse.astype(np.float32)
+            symbol_single = (scale * self.symbol).astype(np.float32)
+        if not all(np.all(np.isfinite(f)) and np.all(f != 0) for f in (inverse, inverse_single, symbol_single)):
+            # the single-precision transforms carry C and C^-1 (~ h / E* and E* / h): lengths and
+            # moduli whose ratio leaves their range cannot be minimised in these units
+            raise SceneError(
+                "material",
+                "the influence coefficients leave the single-precision range in these units: rescale lengths "
+                "and moduli, e.g. to the face's radius and E*",
+            )
+        object.__setattr__(self, "inverse_factor_single", inverse_single)
+        object.__setattr__(self, "symbol_factor_single", symbol_single)
         object.__setattr__(self, "face_block", self.crop(self.face).copy())
         object.__setattr__(self, "_scratch", threading.local())
 

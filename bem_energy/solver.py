@@ -216,7 +216,7 @@ def pull_off(
         info["process_zone_elements_needed"] = process_zone_elements(potential.kind, prob.exponent)[0]
     return Result(
         method="bem_energy",
-        pulloff_force=peak.force,
+        pulloff_force=peak.force + 0.0,  # never -0.0
         pulloff_approach=peak.approach,
         stiffness=float(stiffness),
         converged=eq.work.unconverged == 0 and not outcome.stopped and resolved,

@@ -478,6 +478,13 @@ _KENDALL = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.A
             ),
             "material",
         ),
+        (
+            lambda: be.solve(
+                cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1e-300, 0.3), cs.Adhesion(1.0, 0.05)),
+                EnergySettings(grid=cs.Grid(elements_per_radius=8)),
+            ),
+            "material",
+        ),
         # a range whose square leaves floating point (the potential's curvature is w / rho^2)
         (lambda: cs.Adhesion(1.0, 1e-300), "adhesion.range"),
         (lambda: cs.Adhesion(1.0, 1e300), "adhesion.range"),
