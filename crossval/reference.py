@@ -6,6 +6,7 @@ import math
 import numbers
 import os
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 
@@ -129,7 +130,10 @@ def reference(scene_or_name, *, resolution: float = 64) -> Reference:
         raise cs.SceneError(
             "scene", f"must be a Scene, a built-in scene's name or a scene file's path (got {scene_or_name!r})"
         )
-    scene = scene_or_name if isinstance(scene_or_name, cs.Scene) else load_scene_or_builtin(scene_or_name)
+    if isinstance(scene_or_name, cs.Scene):
+        scene = scene_or_name
+    else:
+        scene = load_scene_or_builtin(scene_or_name if isinstance(scene_or_name, str) else Path(scene_or_name))
     bounded = reference_method(scene, "bounded")
     table = face_references.for_scene(scene)
     if bounded is not None:
