@@ -34,11 +34,14 @@ def press(eq: Equilibria, scene: Scene, approach_scale: float) -> tuple[float, M
         lower_d, upper_d = first_touch, first_touch + max(approach_scale, prob.spacing)
         while excess(upper_d) < 0:
             lower_d, upper_d = upper_d, first_touch + 2 * (upper_d - first_touch)
-        if excess(lower_d) >= 0:
-            # a target below what the minimiser resolves at the first touch (its force there is
-            # round-off): that touch is the press, as brentq would find no sign change
-            return lower_d, eq.minimum(state["U"], lower_d, False)
-        d0 = optimize.brentq(excess, lower_d, upper_d, xtol=1e-10 * (upper_d - first_touch), rtol=1e-12)
+        try:
+            d0 = optimize.brentq(excess, lower_d, upper_d, xtol=1e-10 * (upper_d - first_touch), rtol=1e-12)
+        except ValueError:
+            # no sign change: a target below what the minimiser resolves at the first touch (its
+            # force there is round-off), and that touch is the press
+            if lower_d != first_touch or excess(lower_d) < 0:
+                raise
+            d0 = lower_d
         return d0, eq.minimum(state["U"], d0, False)
     d0 = loading.press_approach if loading.press_approach is not None else 0.0
     if prob.height.size and d0 <= prob.height.min() and not scene.indenter.profile.is_flat:

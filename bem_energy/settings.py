@@ -278,14 +278,14 @@ class ZeroRangeSettings:
             )
         ordered = tuple(sorted(rs, reverse=True))
         closest = min(coarse / fine for coarse, fine in zip(ordered, ordered[1:], strict=False))
-        if closest < MIN_RATIO_STEP:
+        if closest < MIN_RATIO_STEP * (1 - 1e-12):  # 0.3 / 0.2 is 1.4999999999999998
             # the error estimate rests on the last step F(l_n) - F(l_n-1) over t^q - 1 (t the two
             # finest ratios' quotient): as t -> 1 the step shrinks into the ranges' path noise and
             # the estimate says nothing; it is validated on halving sequences
             raise SceneError(
                 "settings.ratios",
                 f"consecutive process-zone ratios must differ by a factor of at least {MIN_RATIO_STEP:g} "
-                f"(got {closest:.9g}); halving sequences such as 0.08, 0.04, 0.02, 0.01 are what the "
+                f"(got {closest!r}); halving sequences such as 0.08, 0.04, 0.02, 0.01 are what the "
                 "error estimate is validated on",
             )
         object.__setattr__(self, "ratios", ordered)

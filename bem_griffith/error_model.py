@@ -83,12 +83,15 @@ def error_bars(
     graded_criterion: str,
     criterion: str = "paper",
     driver: str = "event",
+    detached: bool = True,
 ) -> dict[str, ErrorBar]:
     """The bars of a solve of ``scene`` on a grid of element side ``spacing`` whose face has area
     ``face_area``, with ``graded_criterion``, ``criterion`` and ``driver`` (``GriffithSettings``).
     The pull-off bars are the paper criterion's (Eq. 22) model under the event driver, which the
-    studies ran; another detachment criterion, or the fixed-step driver (whose F_A lags by up to
-    one step's force change), has none (its stiffness, from the press, keeps its bar)."""
+    studies ran, for a pull that ``detached``; another detachment criterion, the fixed-step driver
+    (whose F_A lags by up to one step's force change) or a pull still attached at its end (the
+    largest tension then sits at the user's pull limit, which no study fitted) has none (the
+    stiffness, from the press, keeps its bar)."""
     shape, profile = scene.indenter.shape, scene.indenter.profile
     k = float(getattr(scene.material, "exponent", 0.0))
     N = shape.equivalent_radius / spacing
@@ -97,7 +100,7 @@ def error_bars(
     bars: dict[str, ErrorBar] = {}
     if not profile.is_flat:
         # the stiffness of a curved profile is the pressed contact's, which the study does not cover
-        if k == 0 and driver == "event":
+        if k == 0 and driver == "event" and detached:
             bars["pulloff_force"] = ErrorBar(
                 SPHERE_FORCE_C / N, f"{SPHERE_FORCE_C:g}/N at N = {N:.3g} (JKR sphere, docs/accuracy.md)"
             )
@@ -105,7 +108,7 @@ def error_bars(
     bars["stiffness"] = _bar(
         "stiffness", N, defect, (1 + k) / 2, source="flat circle, square, graded circle, the suite's other faces"
     )
-    if scene.adhesion.work_of_adhesion == 0 or criterion != "paper" or driver != "event":
+    if scene.adhesion.work_of_adhesion == 0 or criterion != "paper" or driver != "event" or not detached:
         return bars
     if k == 0:
         if circle:

@@ -109,11 +109,14 @@ def pressed_state(
     while force_excess(upper) < 0:
         upper = lowest_height + 2 * (upper - lowest_height)
     lower = lowest_height + 1e-12 * (upper - lowest_height)
-    if force_excess(lower) >= 0:
-        # a target below the force of the first touch's own resolution: the lowest elements
-        # just touching are the press (brentq needs a sign change it cannot have here)
-        return lower, states[lower]
-    approach = optimize.brentq(force_excess, lower, upper, xtol=1e-12 * upper, rtol=1e-12)
+    try:
+        approach = optimize.brentq(force_excess, lower, upper, xtol=1e-12 * upper, rtol=1e-12)
+    except ValueError:
+        # no sign change: a target below the force of the first touch's own resolution, and the
+        # lowest elements just touching are the press
+        if lower in states and force_excess(lower) >= 0:
+            return lower, states[lower]
+        raise
     return approach, states[approach] if approach in states else press_to_approach(
         problem, approach, settings, counters
     )

@@ -197,5 +197,6 @@ def assemble_result(
             graded_criterion=settings.graded_criterion,
             criterion=settings.criterion,
             driver=settings.driver,
+            detached=detached,
         ),
     )

@@ -555,7 +555,7 @@ def compare(
         names), or a resolution a method refuses.
     """
     if methods is not None:
-        if isinstance(methods, str) or not all(isinstance(m, str) for m in methods):
+        if not isinstance(methods, (list, tuple)) or not all(isinstance(m, str) for m in methods):
             raise cs.SceneError("methods", f"must be a list of method names (got {methods!r})")
         unknown_methods = [m for m in methods if m not in METHODS]
         if unknown_methods:

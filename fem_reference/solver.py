@@ -428,14 +428,18 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
         Mesh and element settings; ``FemSettings()`` by default.
     callback : callable, optional
         Called once as ``callback(approach, force, contact_area)`` with the pull-off state
-        (d_c, -F_A, pi a^2).
+        (d_c, -F_A, pi a^2), or the state at ``loading.pull_limit`` when the punch is still
+        attached there.
 
     Returns
     -------
     contact_scene.Result
         ``discretisation="mesh"``, with error bars on stiffness, pull-off force and approach
-        (:func:`error_estimates`); ``converged`` False, with a message, when the saddle-point
-        solve did not reach its tolerance.
+        (:func:`error_estimates`; at a pull limit short of d_c the punch is still attached,
+        F = K abs(limit), with the stiffness's bar on both); ``converged`` False, with a message,
+        when the saddle-point solve did not reach its tolerance or dK/da is not positive (no
+        Griffith point: F_A = d_c = 0 stand in, with no pull-off bars).  Fields, when the scene
+        asks for them, are those of the pull-off state.
 
     Raises
     ------
@@ -488,12 +492,6 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
         agree = abs(u.dK_vce / u.dK_compliance - 1)
         if agree > 1e-3:
             msgs.append(f"energy release rate: stiffness and compliance derivatives differ by {agree:.2e}")
-    if scene.outputs.fields:
-        if not settings.fields_path:
-            raise SceneError(
-                "fem.fields_path", "the scene asks for fields: give FemSettings(fields_path=...) (.vtu or .xdmf)"
-            )
-        write_fields(settings.fields_path, u, radius=a, approach=d_c, modulus_scale=modulus_scale)
     # the flat circle stays in full contact, F = K d, until Griffith's condition at d_c; turning
     # points before d_c retrace that branch, so only a pull limit short of d_c changes the result
     limit = scene.loading.pull_limit
@@ -508,6 +506,13 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
     else:
         end, F_end = d_c, F_A
         curve = Curve(np.array([0.0, d_c, d_c]), np.array([0.0, -F_A, 0.0]), np.array([math.pi * a * a] * 2 + [0.0]))
+    if scene.outputs.fields:
+        if not settings.fields_path:
+            raise SceneError(
+                "fem.fields_path", "the scene asks for fields: give FemSettings(fields_path=...) (.vtu or .xdmf)"
+            )
+        # at the pull-off state: d_c, or the pull limit where the punch is still attached
+        write_fields(settings.fields_path, u, radius=a, approach=end, modulus_scale=modulus_scale)
     if scene.outputs.snapshots:
         msgs.append("fem_reference records no snapshots (it solves the pull-off state only)")
     if callback is not None:

@@ -323,7 +323,7 @@ def test_an_inaccurate_linear_solve_is_reported_not_raised(monkeypatch):
     assert not any(c.passed for c in check_results(sc, {"fem_reference": r}))
 
 
-def test_a_pull_limit_short_of_griffiths_approach_ends_attached():
+def test_a_pull_limit_short_of_griffiths_approach_ends_attached(tmp_path):
     # the flat circle stays in full contact, F = K d, until d_c (Eq. 4): a pull limit before it
     # ends attached at tension K |limit|, which the Griffith BEM reports the same way
     mat = homogeneous(0.3)
@@ -339,6 +339,16 @@ def test_a_pull_limit_short_of_griffiths_approach_ends_attached():
     assert any("still attached at the pull limit" in m for m in r.messages)
     assert any("no snapshots" in m for m in r.messages)
     assert set(r.error_bars) == {"stiffness", "pulloff_force"}
+    # fields asked for are those of the state reported: the face at the limit, not at d_c
+    import meshio
+
+    path = tmp_path / "limit.vtu"
+    with_fields = dataclasses.replace(sc, outputs=cs.Outputs(fields=True))
+    fielded = fr.solve(with_fields, fr.FemSettings(grading=2, order=2, fields_path=str(path)))
+    m = meshio.read(path)
+    face = (m.points[:, 1] == 0) & (m.points[:, 0] <= 1.0)
+    assert np.allclose(m.point_data["u_z"][face], fielded.pulloff_approach, rtol=1e-10)
+    assert fielded.pulloff_approach == limit
     # a limit beyond d_c changes nothing
     beyond_limit = dataclasses.replace(sc, loading=cs.Loading(pull_limit=2 * d_c))
     beyond = fr.solve(beyond_limit, fr.FemSettings(grading=2, order=2))

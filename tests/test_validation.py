@@ -283,7 +283,7 @@ KEY_RANGES = [
         lambda v: ZeroRangeSettings(ratios=(0.3, 0.3 / v), rate=0.5),
         "settings.ratios",
         [1.5 * (1 - 1e-9), 1.0 + 1e-9],
-        [1.5, 2.0],
+        [1.5, 2.0, 0.3 / 0.2],  # the last is 1.4999999999999998: a step of 1.5 written as 0.3, 0.2
     ),  # fmt: skip
     (
         "flat press approach >= 0",
@@ -457,6 +457,8 @@ _KENDALL = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.A
         # the harness asked for a method it does not have, or for a string of letters
         (lambda: crossval.compare(_KENDALL, methods=["nope"]), "methods"),
         (lambda: crossval.compare(_KENDALL, methods="bem_griffith"), "methods"),
+        (lambda: crossval.compare(_KENDALL, methods=5), "methods"),
+        (lambda: crossval.compare(_KENDALL, methods={"bem_griffith"}), "methods"),
         (lambda: crossval.reference(5), "scene"),
         # the pull ends at its limit: a turning point beyond it is never reached
         (lambda: cs.Loading(turning_points=(-0.5, -3.0), pull_limit=-1.0), "loading.turning_points"),

@@ -87,7 +87,7 @@ class Brush(Union):
         # below allows lie in neighbouring buckets, so each candidate is tested against those
         # alone (the same decisions as against every pillar, at a cost that does not grow with
         # the count)
-        reach = 2 * radius * 1.000001
+        reach = 2 * radius * 1.00001  # above the test's largest distance, 2 radius 1.000001, by more than round-off
         buckets: dict[tuple[int, int], list[tuple[float, float, float]]] = {}
         for _ in range(_ATTEMPTS_PER_PILLAR * self.count):
             if len(placed) == self.count:
