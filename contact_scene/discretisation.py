@@ -84,6 +84,14 @@ class Grid:
         else:
             assert self.elements_per_radius is not None  # __post_init__ requires one of the two
             h = shape.equivalent_radius / self.elements_per_radius
+            if not 0 < h < math.inf:
+                # the face's area under- or overflowed (a radius of 1e-200 or 1e200): the grid the user
+                # asked for is fine, the face's size is not
+                raise SceneError(
+                    "indenter",
+                    f"the face's size leaves floating point (equivalent radius {shape.equivalent_radius!r}): "
+                    "rescale lengths, e.g. to the face's radius",
+                )
         if self.periodic:
             assert self.period is not None  # __post_init__ requires it when periodic
             h = self.period / math.ceil(self.period / h * (1 - 1e-12))

@@ -487,6 +487,15 @@ _KENDALL = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.A
             ),
             "material",
         ),
+        # a face whose area under- or overflows: the grid by elements per radius named it grid.spacing
+        (
+            lambda: bg.solve(
+                cs.Scene(cs.Indenter(cs.Circle(1e-200)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0)),
+                GriffithSettings(grid=cs.Grid(elements_per_radius=8)),
+            ),
+            "indenter",
+        ),
+        (lambda: cs.Grid(elements_per_radius=8).spacing_for(cs.Circle(1e200)), "indenter"),
         # a range whose square leaves floating point (the potential's curvature is w / rho^2)
         (lambda: cs.Adhesion(1.0, 1e-300), "adhesion.range"),
         (lambda: cs.Adhesion(1.0, 1e300), "adhesion.range"),

@@ -56,7 +56,10 @@ class Circle(Shape):
 
     @property
     def area(self):
-        return math.pi * self.radius**2
+        try:
+            return math.pi * self.radius**2
+        except OverflowError:  # a radius past 1e154: inf, which the grid then refuses by name
+            return math.inf
 
     @property
     def bounds(self):
