@@ -114,7 +114,8 @@ def pressed_state(
     except ValueError:
         # no sign change: a target below the force of the first touch's own resolution, and the
         # lowest elements just touching are the press
-        if lower in states and force_excess(lower) >= 0:
+        # (brentq solved both ends before it refused: the lower end's state is at hand)
+        if lower in states and states[lower].force(lower, cell) >= target:
             return lower, states[lower]
         raise
     return approach, states[approach] if approach in states else press_to_approach(

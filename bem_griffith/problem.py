@@ -218,10 +218,11 @@ def build_problem(scene: Scene, settings: GriffithSettings) -> Problem:
         inverse_lattice_symbol(operator.padded_shape, h, point_kernel) if settings.preconditioner == "fourier" else None
     )
     scale = float(np.abs(kernel).max())
+    largest_inverse = None if inverse is None else float(inverse.max())
     # C_00 ~ h / E*: lengths and moduli whose ratio leaves floating point (the single-precision
     # preconditioner's range, for the inverse symbol ~ E* / h) cannot be solved in these units
     if not (0 < scale < math.inf and 0 <= sigma_c < math.inf) or (
-        inverse is not None and not 0 < float(inverse.max()) < math.inf
+        largest_inverse is not None and not 0 < largest_inverse < math.inf
     ):
         raise SceneError(
             "material",
@@ -233,11 +234,11 @@ def build_problem(scene: Scene, settings: GriffithSettings) -> Problem:
     if not periodic:
         # the lattice symbol is positive and smallest at the highest frequencies; the factor 2
         # covers the aliases the sampled symbol leaves out and frequencies between the samples
-        if inverse is None:
+        if largest_inverse is None:
             transform = point_kernel_transform(point_kernel[1])
             smallest = float(lattice_symbol(operator.padded_shape, h, lambda q: point_kernel[0] * transform(q)).min())
         else:
-            smallest = 1.0 / float(inverse.max())
+            smallest = 1.0 / largest_inverse
         floor = smallest / SAMPLING_MARGIN
     return Problem(
         operator=operator,
