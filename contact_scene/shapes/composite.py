@@ -22,16 +22,11 @@ from .polygons import PolygonalShape
 __all__ = ["Union", "Difference", "TwoCircles"]
 
 
-def _bounding_boxes_disjoint(a: Shape, b: Shape) -> bool:
-    ax0, ay0, ax1, ay1 = a.bounds
-    bx0, by0, bx1, by1 = b.bounds
-    return ax1 < bx0 or bx1 < ax0 or ay1 < by0 or by1 < ay0
-
-
 def _pairwise_disjoint(shapes) -> bool:
-    """Whether no two of the shapes' bounding boxes meet (``_bounding_boxes_disjoint`` for every
-    pair).  Sorted by their left edges, a box can only meet those that start before its right edge
-    ends: each box is compared with those alone, not with all (a brush has up to 1e5 pillars)."""
+    """Whether no two of the shapes' bounding boxes meet: of every pair, one lies strictly left
+    of, right of, below or above the other (touching boxes meet).  Sorted by their left edges, a
+    box can only meet those that start before its right edge ends: each box is compared with those
+    alone, not with all (a brush has up to 1e5 pillars)."""
     if len(shapes) < 2:
         return True
     boxes = np.array([shape.bounds for shape in shapes], float)
