@@ -17,7 +17,7 @@ import numpy as np
 from .errors import SceneError
 from .shapes import Shape
 
-__all__ = ["Raster", "rasterise", "rasterise_periodic", "MIN_INCIRCLE_CELLS"]
+__all__ = ["Raster", "rasterise", "rasterise_periodic", "MIN_INCIRCLE_CELLS", "FACE_SIZE_RANGE", "check_face_size"]
 
 #: a face is refused when fewer than this many cells span its incircle's diameter
 MIN_INCIRCLE_CELLS = 4
@@ -78,6 +78,37 @@ class Raster:
         return np.meshgrid(x, y, indexing="ij")
 
 
+#: the range of a face's size (the larger side of its bounding box) the geometry is computed in:
+#: areas, and the squared edge lengths of the inside tests, stay normal floating-point numbers
+FACE_SIZE_RANGE = (1e-150, 1e150)
+
+
+def check_face_size(shape: Shape) -> None:
+    """Refuse a face whose size lies outside :data:`FACE_SIZE_RANGE`.
+
+    Beyond it the squares of its lengths under- or overflow, and the inside tests of the
+    rasteriser would return a wrong face without a word.
+
+    Parameters
+    ----------
+    shape : contact_scene.Shape
+        The face.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        Naming ``indenter``, with the size and the range.
+    """
+    size = shape.size
+    lo, hi = FACE_SIZE_RANGE
+    if not lo <= size <= hi:
+        raise SceneError(
+            "indenter",
+            f"the face's size ({size:g}, the larger side of its bounding box) must lie in [{lo:g}, {hi:g}], "
+            "where its area is a floating-point number: rescale lengths, e.g. to the face's radius",
+        )
+
+
 def rasterise(
     shape: Shape, spacing: float, *, min_incircle_cells: float = MIN_INCIRCLE_CELLS, field: str = "grid.spacing"
 ) -> Raster:
@@ -107,13 +138,15 @@ def rasterise(
     Raises
     ------
     contact_scene.SceneError
-        Naming ``field``: a spacing that is not a finite number > 0, one with fewer than
+        Naming ``indenter`` for a face whose size lies outside :data:`FACE_SIZE_RANGE`; naming
+        ``field``: a spacing that is not a finite number > 0, one with fewer than
         ``min_incircle_cells`` cells across the incircle of the face's smallest separate part
         (``Shape.smallest_part_incircle``; the message gives the largest spacing allowed), a
         raster of more than 2^31 cells, or one in which no cell centre lies in the face.
     """
     if not (isinstance(spacing, (int, float)) and math.isfinite(spacing) and spacing > 0):
         raise SceneError(field, f"must be a finite number > 0 (got {spacing!r})")
+    check_face_size(shape)
     # every separate part of the face, not only the largest, must be resolved, or a small one is
     # lost from the raster without a word
     r_in = shape.smallest_part_incircle().radius

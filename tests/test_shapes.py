@@ -357,3 +357,57 @@ def test_the_largest_random_brush_is_built():
     brush = cs.Brush(1.0, 1e-4, layout="random", count=100_000)
     assert len(brush.parts) == 100_000 and brush._disjoint
     assert brush.area == pytest.approx(100_000 * math.pi * 1e-8, rel=1e-12)
+
+
+_SCALED_EXTRA = {
+    # a convex polygon without a closed-form incircle (the linear programme) and a non-convex one
+    "pentagon": ((0.0, 0.0), (3.0, 0.0), (4.0, 2.0), (1.0, 3.0), (-0.5, 1.5)),
+    "l_shape": ((0.0, 0.0), (2.0, 0.0), (2.0, 1.0), (1.0, 1.0), (1.0, 2.0), (0.0, 2.0)),
+}
+
+
+def _scaled_face(name: str, s: float) -> cs.Shape:
+    if name in _SCALED_EXTRA:
+        return cs.Polygon(tuple((s * x, s * y) for x, y in _SCALED_EXTRA[name]))
+    face = SHAPES[name]
+    fields = {f.name: getattr(face, f.name) for f in dataclasses.fields(face) if f.init}
+    lengths = {"radius", "radius1", "radius2", "distance", "side", "width", "height", "semi_major", "semi_minor"}
+    lengths |= {"outer_radius", "inner_radius", "pillar_radius", "pitch", "v_cut_depth", "v_cut_width"}
+    lengths |= {"line_cut_length", "cut_width", "circumradius"}
+    scaled = {k: s * v if k in lengths else v for k, v in fields.items()}
+    if "center" in scaled:
+        scaled["center"] = tuple(s * c for c in fields["center"])
+    if "vertices" in scaled:
+        scaled["vertices"] = tuple((s * x, s * y) for x, y in fields["vertices"])
+    return type(face)(**scaled)
+
+
+@pytest.mark.parametrize("s", [1e-120, 1e-30, 1e-9, 1e-6, 1e6, 1e120])
+@pytest.mark.parametrize("name", sorted(SHAPES) + sorted(_SCALED_EXTRA))
+def test_geometry_is_invariant_under_a_change_of_length_unit(name, s):
+    # a face in nanometres (or any unit) is the same face: its area, centroid, incircle and raster
+    # scale with the unit.  The incircle's linear programme, solved in the given units, gave a
+    # pentagon of nanometres a radius 4 % too large and one of 1e-30 a radius of zero; the first
+    # moments (lengths cubed) overflowed at 1e120, and the two circles' lens area underflowed
+    one, face = _scaled_face(name, 1.0), _scaled_face(name, s)
+    assert face.area / s**2 == pytest.approx(one.area, rel=1e-12)
+    assert np.asarray(face.centroid) / s == pytest.approx(np.asarray(one.centroid), rel=1e-9, abs=1e-12 * one.size)
+    for part in ("incircle", "smallest_part_incircle"):
+        scaled, unit = getattr(face, part)(), getattr(one, part)()
+        assert scaled.radius / s == pytest.approx(unit.radius, rel=1e-9)
+        assert np.asarray(scaled.center) / s == pytest.approx(np.asarray(unit.center), rel=1e-6, abs=1e-6 * one.size)
+    h = one.equivalent_radius / 24
+    assert np.array_equal(cs.rasterise(face, s * h).mask, cs.rasterise(one, h).mask)
+
+
+@pytest.mark.parametrize("s", [1e-200, 1e200])
+def test_a_face_whose_area_leaves_floating_point_is_refused_by_name(s):
+    for face in (cs.Square(2 * s), cs.Polygon(tuple((s * x, s * y) for x, y in _SCALED_EXTRA["l_shape"]))):
+        with pytest.raises(cs.SceneError) as caught:
+            cs.rasterise(face, 0.1 * s)
+        assert caught.value.field == "indenter"
+    # a cut face whose base area underflowed is not a face the cuts removed
+    if s < 1:
+        with pytest.raises(cs.SceneError) as caught:
+            cs.Difference(cs.Circle(s), (cs.Square(s),))
+        assert caught.value.field == "indenter.base"

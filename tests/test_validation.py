@@ -475,7 +475,7 @@ _KENDALL = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.A
         ),
         (
             lambda: bg.solve(
-                cs.Scene(cs.Indenter(cs.Circle(1e150)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0)),
+                cs.Scene(cs.Indenter(cs.Circle(1e100)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0)),
                 GriffithSettings(grid=cs.Grid(elements_per_radius=8)),
             ),
             "material",

@@ -24,6 +24,16 @@ __all__ = ["Incircle", "Shape", "BOUNDARY_REL_TOL"]
 BOUNDARY_REL_TOL = 1e-9
 
 
+def ldexp_saturating(x: float, e: int) -> float:
+    """x 2^e, exact where representable; +-inf past the largest float (math.ldexp raises there) and
+    zero below the smallest, which the grid then refuses by name (a face's size that leaves
+    floating point)."""
+    try:
+        return math.ldexp(x, e)
+    except OverflowError:
+        return math.copysign(math.inf, x)
+
+
 class Incircle(NamedTuple):
     """The largest circle inscribed in a face (the lower bound's circle, Eqs. 18-19).
 

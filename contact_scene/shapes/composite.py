@@ -15,7 +15,7 @@ import numpy as np
 from ..errors import SceneError
 from ..validation import real
 from . import numerical
-from .base import Incircle, Shape
+from .base import Incircle, Shape, ldexp_saturating
 from .conics import Circle, Ellipse
 from .polygons import PolygonalShape
 
@@ -44,7 +44,10 @@ def _pairwise_disjoint(shapes) -> bool:
 def _weighted_centroid(areas, centroids) -> tuple[float, float]:
     areas = np.asarray(areas, float)
     centroids = np.asarray(centroids, float)
-    cx, cy = (areas[:, None] * centroids).sum(0) / areas.sum()
+    # weights of order one: an area times a coordinate is a length cubed, which overflows for
+    # faces of 1e103 and more while their areas and coordinates do not
+    weights = areas / np.max(np.abs(areas))
+    cx, cy = (weights[:, None] * centroids).sum(0) / weights.sum()
     return float(cx), float(cy)
 
 
@@ -159,6 +162,10 @@ class Difference(Shape):
             raise SceneError("indenter.cuts", "must be a tuple of shapes")
         object.__setattr__(self, "cuts", tuple(cuts))
         if self.area <= 0:
+            if not self.base.area > 0:  # an area that underflowed, not one the cuts took away
+                raise SceneError(
+                    "indenter.base", f"the base's area underflows (size {self.base.size:g}): rescale lengths"
+                )
             raise SceneError("indenter.cuts", "the cuts remove the whole face; the shape is empty")
 
     def contains(self, x, y):
@@ -238,16 +245,22 @@ class TwoCircles(Union):
 
     @cached_property
     def area(self):
-        r1, r2, d = self.radius1, self.radius2, self.distance
+        # in units of the larger radius (a power of two, so scaling back is exact): the kite's
+        # product of four lengths under- or overflows for radii beyond 1e+-77, the whole face's
+        # area only beyond 1e+-154
+        e = math.frexp(max(self.radius1, self.radius2))[1]
+        r1, r2, d = (ldexp_saturating(x, -e) for x in (self.radius1, self.radius2, self.distance))
         if d >= r1 + r2:
-            return math.pi * (r1**2 + r2**2)
-        if d <= abs(r1 - r2):
-            return math.pi * max(r1, r2) ** 2
-        # the lens both discs cover: two circular segments
-        segment1 = r1**2 * math.acos((d**2 + r1**2 - r2**2) / (2 * d * r1))
-        segment2 = r2**2 * math.acos((d**2 + r2**2 - r1**2) / (2 * d * r2))
-        kite = 0.5 * math.sqrt((-d + r1 + r2) * (d + r1 - r2) * (d - r1 + r2) * (d + r1 + r2))
-        return math.pi * (r1**2 + r2**2) - (segment1 + segment2 - kite)
+            unit = math.pi * (r1**2 + r2**2)
+        elif d <= abs(r1 - r2):
+            unit = math.pi * max(r1, r2) ** 2
+        else:
+            # the lens both discs cover: two circular segments
+            segment1 = r1**2 * math.acos((d**2 + r1**2 - r2**2) / (2 * d * r1))
+            segment2 = r2**2 * math.acos((d**2 + r2**2 - r1**2) / (2 * d * r2))
+            kite = 0.5 * math.sqrt((-d + r1 + r2) * (d + r1 - r2) * (d - r1 + r2) * (d + r1 + r2))
+            unit = math.pi * (r1**2 + r2**2) - (segment1 + segment2 - kite)
+        return ldexp_saturating(unit, 2 * e)
 
     @property
     def area_is_exact(self):

@@ -13,7 +13,7 @@ from scipy import optimize
 from ..errors import SceneError, check_real
 from ..validation import point, real, whole
 from . import numerical
-from .base import Incircle, Shape
+from .base import Incircle, Shape, ldexp_saturating
 
 __all__ = [
     "PolygonalShape",
@@ -34,6 +34,23 @@ def shoelace_area(vertices: np.ndarray) -> float:
     """Signed area of the polygon (positive when the vertices run counter-clockwise)."""
     x, y = vertices[:, 0], vertices[:, 1]
     return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
+
+
+def _unit_frame(vertices: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
+    """The vertices in a frame of unit size: (unit, origin, e) with vertices = origin + 2^e unit.
+
+    The origin is the centre of the bounding box and 2^e the power of two at or above its larger
+    side, so the unit coordinates lie within [-1/2, 1/2] and scaling back by 2^e is exact.  The
+    polygon's products (areas, first moments, the incircle's linear programme, the crossing
+    tests) are formed there: in the given units they under- or overflow long before the
+    coordinates do (a first moment is a length cubed), and the incircle's solver, whose
+    tolerances are absolute, gave a face of nanometres a radius 4 per cent too large and one of
+    1e-30 a radius of zero."""
+    low, high = vertices.min(axis=0), vertices.max(axis=0)
+    origin = low + 0.5 * (high - low)
+    extent = float(np.max(high - low))
+    e = math.frexp(extent)[1] if extent > 0 and math.isfinite(extent) else 0
+    return np.ldexp(vertices - origin, -e), origin, e
 
 
 def rotate_points(points: np.ndarray, angle_deg: float, center) -> np.ndarray:
@@ -83,15 +100,21 @@ class PolygonalShape(Shape):
                 f"vertices {i} and {(i + 1) % len(v)} coincide; give each corner once (a closed ring's "
                 "last vertex repeats its first: leave it out)",
             )
+        unit, _, _ = _unit_frame(v)
         if not self.simple_by_construction:
-            self._check_simple(v)
-        signed_area = shoelace_area(v)
-        extent = np.ptp(v, axis=0).max()
+            self._check_simple(unit)
+        signed_area = shoelace_area(unit)
+        extent = np.ptp(unit, axis=0).max()
         if abs(signed_area) <= 1e-12 * extent**2 or extent == 0:
             raise SceneError(
                 "indenter.vertices", "the polygon is empty (zero area); give at least 3 non-collinear vertices"
             )
         return v[::-1].copy() if signed_area < 0 else v
+
+    @cached_property
+    def _unit(self) -> tuple[np.ndarray, np.ndarray, int]:
+        """:func:`_unit_frame` of the validated (counter-clockwise) vertices."""
+        return _unit_frame(self._verts)
 
     @staticmethod
     def _check_simple(v: np.ndarray) -> None:
@@ -114,7 +137,8 @@ class PolygonalShape(Shape):
 
     @property
     def area(self):
-        return float(shoelace_area(self._verts))
+        unit, _, e = self._unit
+        return ldexp_saturating(shoelace_area(unit), 2 * e)
 
     @property
     def bounds(self):
@@ -123,23 +147,23 @@ class PolygonalShape(Shape):
 
     @property
     def centroid(self):
-        v = self._verts
-        x, y = v[:, 0], v[:, 1]
+        unit, origin, e = self._unit
+        x, y = unit[:, 0], unit[:, 1]
         x_next, y_next = np.roll(x, -1), np.roll(y, -1)
         cross = x * y_next - x_next * y
         twice_area = cross.sum()
         return (
-            float(((x + x_next) * cross).sum() / (3 * twice_area)),
-            float(((y + y_next) * cross).sum() / (3 * twice_area)),
+            float(origin[0] + ldexp_saturating(float(((x + x_next) * cross).sum() / (3 * twice_area)), e)),
+            float(origin[1] + ldexp_saturating(float(((y + y_next) * cross).sum() / (3 * twice_area)), e)),
         )
 
     @cached_property
     def is_convex(self) -> bool:
         """Whether the polygon is convex (no inward turn at any corner, to round-off)."""
-        v = self._verts
-        edges = np.roll(v, -1, axis=0) - v
+        unit, _, _ = self._unit
+        edges = np.roll(unit, -1, axis=0) - unit
         turn = edges[:, 0] * np.roll(edges[:, 1], -1) - edges[:, 1] * np.roll(edges[:, 0], -1)
-        return bool(np.all(turn >= -1e-12 * self.size**2))
+        return bool(np.all(turn >= -1e-12 * np.ptp(unit, axis=0).max() ** 2))
 
     def contains(self, x, y):
         x = np.asarray(x, float)
@@ -197,17 +221,19 @@ class PolygonalShape(Shape):
         return np.where(self.contains(x, y), -d, d)
 
     def incircle(self):
-        v = self._verts
         if self.is_convex:
-            # Chebyshev centre: max r s.t. n_i . c + r <= n_i . v_i for every edge (an LP)
-            edges = np.roll(v, -1, axis=0) - v
+            # Chebyshev centre: max r s.t. n_i . c + r <= n_i . v_i for every edge (an LP), in
+            # the unit frame: HiGHS's tolerances are absolute
+            unit, origin, e = self._unit
+            edges = np.roll(unit, -1, axis=0) - unit
             normals = np.column_stack([edges[:, 1], -edges[:, 0]]) / np.hypot(edges[:, 0], edges[:, 1])[:, None]
             A = np.column_stack([normals, np.ones(len(normals))])
-            b = np.einsum("ij,ij->i", normals, v)
+            b = np.einsum("ij,ij->i", normals, unit)
             res = optimize.linprog([0, 0, -1], A_ub=A, b_ub=b, bounds=[(None, None)] * 3, method="highs")
             if res.x is not None:  # the LP of a convex polygon is feasible; else the search below
                 cx, cy, r = res.x
-                return Incircle(float(r), (float(cx), float(cy)))
+                centre = (origin[0] + ldexp_saturating(float(cx), e), origin[1] + ldexp_saturating(float(cy), e))
+                return Incircle(ldexp_saturating(float(r), e), (float(centre[0]), float(centre[1])))
         # non-convex: best point of a sampling grid, polished on the exact distance
         X, Y, _ = numerical.fine_grid(self, 200)
         depth = -self.signed_distance(X, Y)
