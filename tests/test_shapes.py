@@ -164,6 +164,97 @@ def test_a_grid_must_resolve_every_separate_part_of_the_face(face):
     assert joined.smallest_part_incircle() == joined.incircle()
 
 
+def _segment_area(radius, height):
+    """Area of the circular segment of ``height`` cut from a disc of ``radius`` by a chord."""
+    d = radius - height
+    return radius**2 * math.acos(d / radius) - d * math.sqrt(radius**2 - d**2)
+
+
+#: faces that cuts split into a large part and a circular segment of height H, whose incircle
+#: (radius H/2, tangent to the chord and the arc) is the narrowest part's
+CUT_INTO_ISLANDS = {
+    # a disc minus a bar 0.5 <= y <= 0.6: a segment of height 1.5 and a cap of height 0.4
+    "disc_minus_bar": (cs.Difference(cs.Circle(1.0), (cs.Rectangle(3.0, 0.1, center=(0.0, 0.55)),)), 0.4),
+    # an annulus 0.5 <= r <= 1 minus a bar 0.8 <= x <= 0.85: a C and a segment of height 0.15
+    "annulus_minus_bar": (
+        cs.Difference(cs.Circle(1.0), (cs.Circle(0.5), cs.Rectangle(0.05, 3.0, center=(0.825, 0.0)))),
+        0.15,
+    ),
+}
+
+
+@pytest.mark.parametrize("name", sorted(CUT_INTO_ISLANDS))
+def test_a_grid_must_resolve_every_island_of_a_cut_face(name):
+    """The large part's incircle allows a grid that keeps two or three cells of the segment (or
+    merges it into the large part): the segment's own incircle, H/2, decides."""
+    from scipy import ndimage
+
+    face, height = CUT_INTO_ISLANDS[name]
+    true_radius = height / 2
+    h = face.size / 1024  # the auxiliary raster's cell: its pieces are wide, so its fewest cells
+    r, (cx, cy) = face.smallest_part_incircle()
+    # an estimate below the true radius, by less than two auxiliary cells
+    assert true_radius - 2 * h <= r <= true_radius
+    assert math.hypot(cx, cy) > 1 - height  # in the segment
+    assert face.incircle().radius > 1.5 * true_radius  # the large part's
+    # a grid coarser than the segment's true incircle allows is refused ...
+    with pytest.raises(cs.SceneError, match="smallest separate part"):
+        cs.rasterise(face, 2 * true_radius / 4 * 1.001)
+    # ... and one inside the estimate's error accepted, with the segment an island of its own
+    raster = cs.rasterise(face, 2 * (true_radius - 2 * h) / 4)
+    labels, islands = ndimage.label(raster.mask)
+    assert islands == 2
+    sizes = np.bincount(labels.ravel())[1:] * raster.spacing**2
+    assert sizes.min() == pytest.approx(_segment_area(1.0, height), rel=0.2)
+
+
+def test_cut_faces_in_one_piece_keep_their_incircle():
+    """A connected difference (and one of islands inside a union or transformed) answers as before."""
+    holed = cs.Difference(cs.Square(2.0), (cs.Circle(0.3),))
+    for face in (SHAPES["faults"], holed):
+        assert face.smallest_part_incircle() == face.incircle()
+    face, height = CUT_INTO_ISLANDS["disc_minus_bar"]
+    assert cs.Transformed(face, scale=2.0).smallest_part_incircle().radius == pytest.approx(
+        2 * face.smallest_part_incircle().radius
+    )
+    far = cs.Union((face, cs.Circle(1.0, (5.0, 0.0))))
+    assert far.smallest_part_incircle() == face.smallest_part_incircle()
+
+
+def _image_of(tmp_path, pixels, name="face.png"):
+    import matplotlib.image as mpimg
+
+    p = tmp_path / name
+    mpimg.imsave(p, np.where(pixels, 0.0, 1.0), cmap="gray", vmin=0, vmax=1)
+    return str(p)
+
+
+def test_a_grid_must_resolve_every_island_of_an_image(tmp_path):
+    """A disc of radius 40 pixels and a 5 x 5 pixel island: the island's incircle, 2.5 pixels (the
+    distance transform's answer for a square island is exact), decides the grid."""
+    n, pixel = 200, 0.01
+    yy, xx = np.mgrid[0:n, 0:n]
+    pixels = (xx + 0.5 - 80) ** 2 + (yy + 0.5 - 100) ** 2 <= 40**2
+    pixels[98:103, 160:165] = True  # rows 98..102 (the middle row is 100), columns 160..164
+    s = cs.ImageMask(path=_image_of(tmp_path, pixels), pixel_size=pixel)
+    r, (cx, cy) = s.smallest_part_incircle()
+    assert r == pytest.approx(2.5 * pixel)
+    assert (cx, cy) == pytest.approx((62.5 * pixel, -0.5 * pixel))  # the island's middle pixel
+    assert s.incircle().radius > 35 * pixel  # the disc's
+    with pytest.raises(cs.SceneError, match="smallest separate part"):
+        cs.rasterise(s, 2 * r / 4 * 1.001)
+    raster = cs.rasterise(s, 2 * r / 4 * 0.999)
+    x, _ = raster.centres()
+    assert raster.mask[x > 0.55].sum() * raster.spacing**2 == pytest.approx(25 * pixel**2, rel=0.2)
+    # one island (pixels touching at a corner only are two): the image's incircle, as before
+    one = cs.ImageMask(path=_image_of(tmp_path, pixels[:, :150], "one.png"), pixel_size=pixel)
+    assert one.smallest_part_incircle() == one.incircle()
+    corner = np.zeros((20, 20), bool)
+    corner[5:10, 5:10] = corner[10:13, 10:13] = True
+    two = cs.ImageMask(path=_image_of(tmp_path, corner, "corner.png"), pixel_size=pixel)
+    assert two.smallest_part_incircle().radius == pytest.approx(1.5 * pixel)
+
+
 def test_power_law_star_ring_filling_follows_design():
     s = cs.PowerLawStar(8, 0.3, 1.0, samples=128)
     for r in (0.4, 0.6, 0.9):

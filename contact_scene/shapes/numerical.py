@@ -1,13 +1,13 @@
 """Numerical geometry on a fine raster, for shapes without a closed form (unions of
 overlapping parts, cut faces, images): area, centroid and incircle, each accurate to about
-1e-3 of the shape's size or better."""
+1e-3 of the shape's size or better, and the separate parts (islands) of a raster."""
 
 from __future__ import annotations
 
 import numpy as np
 from scipy import ndimage
 
-__all__ = ["fine_grid", "raster_area", "raster_centroid", "raster_incircle"]
+__all__ = ["fine_grid", "raster_area", "raster_centroid", "raster_incircle", "smallest_island"]
 
 
 def fine_grid(shape, cells_across: int):
@@ -40,3 +40,26 @@ def raster_incircle(shape, cells_across: int = 1024) -> tuple[float, tuple[float
 def raster_area(shape, cells_across: int = 2048) -> float:
     X, Y, h = fine_grid(shape, cells_across)
     return float(np.count_nonzero(shape.contains(X, Y)) * h * h)
+
+
+def smallest_island(inside: np.ndarray) -> tuple[int, float, tuple[int, ...]]:
+    """The separate parts of a raster and the narrowest of them.
+
+    Islands are the 4-connected components of ``inside``: cells touching only at a corner, which
+    meet in a point, are apart (the more islands, the narrower the narrowest).  An island's depth
+    is the largest distance, in cells, from one of its cell centres to the nearest centre outside
+    the face (``scipy.ndimage.distance_transform_edt``); the narrowest island is the one of least
+    depth.  ``inside`` must have an empty border, or the array's edge does not count as outside.
+
+    Returns (number of islands, depth of the narrowest, its deepest cell's index); with fewer
+    than two islands, (number, 0.0, ()): the face's incircle is then its narrowest part's.
+    """
+    labels, n = ndimage.label(inside)
+    if n < 2:
+        return n, 0.0, ()
+    depth = ndimage.distance_transform_edt(inside)
+    index = np.arange(1, n + 1)
+    peaks = np.asarray(ndimage.maximum(depth, labels, index), float)
+    k = int(np.argmin(peaks))
+    where = np.asarray(ndimage.maximum_position(depth, labels, k + 1), np.int64).ravel()
+    return n, float(peaks[k]), tuple(int(i) for i in where)
