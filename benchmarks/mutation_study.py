@@ -184,8 +184,8 @@ MUTANTS: tuple[Mutant, ...] = (
         "fem_reference/model.py",
         # the default assembly (FemSettings.kernels="vectorised"); the scikit-fem forms it replaced
         # are kept and held equal to it by tests/test_fem_reference.py
-        "WS = (S * (mu * rJdx))",
-        "WS = (S * (mu * J * ub.dx))",
+        "WT = (T * rdx)",
+        "WT = (T * ub.dx)",
         "the deviatoric form without the axisymmetric weight r (the pressure forms keep it)",
     ),
     Mutant(

@@ -240,7 +240,8 @@ def unit_solution(
     Parameters
     ----------
     material : fem_reference.model.Material
-        The dimensionless material: exponent k in [0, 1) and Poisson's ratio.
+        The dimensionless material: exponent k in [0, 1 - 1e-9] (see :func:`applies`) and
+        Poisson's ratio.
     settings : FemSettings
         Mesh, degree and kernels.
     energy_release : bool, optional
@@ -373,6 +374,15 @@ def error_estimates(u: UnitSolution, mat: Material, settings: FemSettings) -> tu
     return est, other
 
 
+#: the largest graded exponent, 1 - 1e-9 (compared as floats).  The depth mapping z = zeta^m,
+#: m = 1/(1 - k), amplifies the rounding of the mesh's depth coordinates by m.  Measured errors
+#: of K against Eq. 34: 5.5e-7 at 1 - k = 1e-9 on the default mesh (bound 9.8e-7); on
+#: grading 2 (bound 1.0e-6) 1.6e-8 at 1e-10, then 2.2e-6, 2.7e-5, 8.9e-4, 8.3e-3 at
+#: 1 - k = 1e-11 ... 1e-14, past the bound with the solve reported converged; at 1e-15 the
+#: cells degenerate.
+MAX_GRADED_EXPONENT = 1 - 1e-9
+
+
 def _material(scene: Scene) -> tuple[Material, float]:
     """Dimensionless material and the modulus scale with K = scale a K^."""
     m = scene.material
@@ -392,6 +402,14 @@ def _material(scene: Scene) -> tuple[Material, float]:
     raise SceneError("material", f"unsupported material {type(m).__name__}")  # pragma: no cover
 
 
+def _too_close_to_one(k: float) -> str:
+    return (
+        "the FEM covers graded media with 0 <= k <= 1 - 1e-9 only: the depth mapping "
+        f"z = zeta^m, m = 1/(1 - k) = {1 / (1 - k):.3g}, amplifies the rounding of the mesh coordinates "
+        f"by m (got k = {k!r})"
+    )
+
+
 def applies(scene: Scene) -> str | None:
     """Whether the FEM can represent a scene, and if not why.
 
@@ -404,13 +422,17 @@ def applies(scene: Scene) -> str | None:
     -------
     str or None
         None for a circular flat punch on a homogeneous body or a graded one with
-        0 <= k < 1 (nu = 1/(2+k) > 1/2 for k < 0 is not positive definite); else the reason.
+        0 <= k <= 1 - 1e-9 (nu = 1/(2+k) > 1/2 for k < 0 is not positive definite; closer to
+        1 the depth mapping's rounding, m eps with m = 1/(1 - k), outgrows the accuracy, see
+        :data:`MAX_GRADED_EXPONENT`); else the reason.
     """
     if not isinstance(scene.indenter.shape, Circle) or not scene.indenter.profile.is_flat:
         return "fem_reference models circular flat punches only (axisymmetric)"
     m = scene.material
     if isinstance(m, PowerLawGraded) and m.exponent < 0:
         return "fem_reference covers graded media with 0 <= k < 1 only (nu > 1/2 for k < 0)"
+    if isinstance(m, PowerLawGraded) and m.exponent > MAX_GRADED_EXPONENT:
+        return "fem_reference: " + _too_close_to_one(m.exponent)
     return None
 
 
@@ -445,9 +467,9 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
     ------
     contact_scene.SceneError
         ``indenter.shape`` for a face that is not a circle with a flat profile;
-        ``material.exponent`` for a graded body with k < 0; ``fem.grading`` for a homogeneous
-        body with grading > 2; ``fem.fields_path`` when the scene asks for fields and the
-        settings give no path.
+        ``material.exponent`` for a graded body with k < 0 or k > 1 - 1e-9 (see
+        :func:`applies`); ``fem.grading`` for a homogeneous body with grading > 2;
+        ``fem.fields_path`` when the scene asks for fields and the settings give no path.
     """
     check_type("scene", scene, Scene)
     why = applies(scene)
