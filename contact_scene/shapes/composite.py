@@ -107,7 +107,13 @@ class Union(Shape):
     def smallest_part_incircle(self):
         if self._disjoint:
             return min((p.smallest_part_incircle() for p in self.parts), key=lambda c: c.radius)
-        return self.incircle()
+        # bounding boxes that meet do not make the parts meet (a disc in a ring's hole): the
+        # islands of an auxiliary raster, as a difference finds them
+        return self._smallest_part
+
+    @cached_property
+    def _smallest_part(self) -> Incircle:
+        return _smallest_island_incircle(self, _pieces(self), [])
 
     @cached_property
     def area(self):
@@ -270,37 +276,46 @@ class Difference(Shape):
         # as the union's own contains is
         cut_pieces = [(piece, True) for cut in self.cuts if isinstance(cut, Union) for piece in _pieces(cut)]
         cut_pieces += [(cut, False) for cut in self.cuts if not isinstance(cut, Union)]
-        narrowest = min(_width_estimate(piece) for piece in base_pieces + [piece for piece, _ in cut_pieces])
-        xmin, ymin, xmax, ymax = self.bounds
-        size = self.size
-        fewest, most = _PARTS_CELLS_ACROSS
-        cells = fewest
-        if narrowest > 0 and math.isfinite(narrowest):
-            cells = min(max(fewest, math.ceil(_PARTS_CELLS_PER_WIDTH * size / narrowest)), most)
-        h = size / cells
-        # the cell centres of numerical.fine_grid: the box plus one empty cell each side
-        xs = np.arange(xmin - h, xmax + 1.5 * h, h)
-        ys = np.arange(ymin - h, ymax + 1.5 * h, h)
+        return _smallest_island_incircle(self, base_pieces, cut_pieces)
 
-        def block(piece):
-            # the cells of the piece's bounding box, padded by a cell for its boundary tolerance
-            x0, y0, x1, y1 = piece.bounds
-            i = slice(np.searchsorted(xs, x0 - h, "left"), np.searchsorted(xs, x1 + h, "right"))
-            j = slice(np.searchsorted(ys, y0 - h, "left"), np.searchsorted(ys, y1 + h, "right"))
-            X, Y = np.meshgrid(xs[i], ys[j], indexing="ij")
-            return (i, j), X, Y
 
-        inside = np.zeros((len(xs), len(ys)), bool)
-        for piece in base_pieces:
-            where, X, Y = block(piece)
-            inside[where] |= np.asarray(piece.contains(X, Y), bool)
-        for piece, closed in cut_pieces:
-            where, X, Y = block(piece)
-            inside[where] &= ~np.asarray(piece.contains(X, Y) if closed else _interior(piece, X, Y), bool)
-        islands, depth, at = numerical.smallest_island(inside)
-        if islands < 2:
-            return self.incircle()
-        return Incircle(float(max(depth - 1.0, 0.5) * h), (float(xs[at[0]]), float(ys[at[1]])))
+def _smallest_island_incircle(face: Shape, base_pieces: list, cut_pieces: list) -> Incircle:
+    """The incircle of the narrowest island of ``face`` on an auxiliary raster (see
+    :meth:`Difference.smallest_part_incircle`); ``face.incircle()`` when it has one island.
+
+    ``base_pieces`` are joined, then each (piece, closed) of ``cut_pieces`` removed: the closed
+    piece where ``closed``, else its open interior."""
+    narrowest = min(_width_estimate(piece) for piece in base_pieces + [piece for piece, _ in cut_pieces])
+    xmin, ymin, xmax, ymax = face.bounds
+    size = face.size
+    fewest, most = _PARTS_CELLS_ACROSS
+    cells = fewest
+    if narrowest > 0 and math.isfinite(narrowest):
+        cells = min(max(fewest, math.ceil(_PARTS_CELLS_PER_WIDTH * size / narrowest)), most)
+    h = size / cells
+    # the cell centres of numerical.fine_grid: the box plus one empty cell each side
+    xs = np.arange(xmin - h, xmax + 1.5 * h, h)
+    ys = np.arange(ymin - h, ymax + 1.5 * h, h)
+
+    def block(piece):
+        # the cells of the piece's bounding box, padded by a cell for its boundary tolerance
+        x0, y0, x1, y1 = piece.bounds
+        i = slice(np.searchsorted(xs, x0 - h, "left"), np.searchsorted(xs, x1 + h, "right"))
+        j = slice(np.searchsorted(ys, y0 - h, "left"), np.searchsorted(ys, y1 + h, "right"))
+        X, Y = np.meshgrid(xs[i], ys[j], indexing="ij")
+        return (i, j), X, Y
+
+    inside = np.zeros((len(xs), len(ys)), bool)
+    for piece in base_pieces:
+        where, X, Y = block(piece)
+        inside[where] |= np.asarray(piece.contains(X, Y), bool)
+    for piece, closed in cut_pieces:
+        where, X, Y = block(piece)
+        inside[where] &= ~np.asarray(piece.contains(X, Y) if closed else _interior(piece, X, Y), bool)
+    islands, depth, at = numerical.smallest_island(inside)
+    if islands < 2:
+        return face.incircle()
+    return Incircle(float(max(depth - 1.0, 0.5) * h), (float(xs[at[0]]), float(ys[at[1]])))
 
 
 @dataclass(frozen=True)
