@@ -395,7 +395,7 @@ def _material(scene: Scene) -> tuple[Material, float]:
         if m.exponent < 0:
             raise SceneError(
                 "material.exponent",
-                f"the FEM covers 0 <= k < 1 only: nu = 1/(2+k) > 1/2 for k < 0 is not a positive definite "
+                f"the FEM covers 0 <= k <= 1 - 1e-9 only: nu = 1/(2+k) > 1/2 for k < 0 is not a positive definite "
                 f"material (got k = {m.exponent:g})",
             )
         return Material(m.exponent, m.poisson_ratio), m.surface_modulus * (a / m.reference_depth) ** m.exponent
@@ -430,7 +430,7 @@ def applies(scene: Scene) -> str | None:
         return "fem_reference models circular flat punches only (axisymmetric)"
     m = scene.material
     if isinstance(m, PowerLawGraded) and m.exponent < 0:
-        return "fem_reference covers graded media with 0 <= k < 1 only (nu > 1/2 for k < 0)"
+        return "fem_reference covers graded media with 0 <= k <= 1 - 1e-9 only (nu > 1/2 for k < 0)"
     if isinstance(m, PowerLawGraded) and m.exponent > MAX_GRADED_EXPONENT:
         return "fem_reference: " + _too_close_to_one(m.exponent)
     return None
