@@ -155,16 +155,17 @@ def plot_error_vs_time(study, ax=None, *, notes=None):
         if notes and notes.get(m):
             label += f"; {notes[m]}"
         (line,) = ax.plot(x, e, "-", lw=1, label=label, color=METHOD_COLOURS.get(m))
-        for xi, r, ei in zip(x, mr, e, strict=True):
+        for i, (xi, r, ei) in enumerate(zip(x, mr, e, strict=True)):
             # the axis is the magnitude: the marker says on which side of the reference the run lies
             marker = "v" if r.signed_error < 0 else "^"
             ax.plot(xi, ei, marker, color=line.get_color(), ms=5, mfc=line.get_color() if r.error > unc else "white")
-            # the axis the run is not placed on is written next to it: its time, or its resolution
+            # the axis the run is not placed on is written next to it: its time, or its resolution;
+            # above and below the marker in turn, so that neighbours' labels do not overprint
             ax.annotate(
                 f"{r.wall_time_s:.2g} s" if not timed else f"N = {r.resolution:.3g}",
                 (xi, ei),
                 textcoords="offset points",
-                xytext=(4, 3),
+                xytext=(4, 3) if i % 2 == 0 else (4, -9),
                 fontsize=6,
                 color=line.get_color(),
             )
@@ -206,6 +207,10 @@ def plot_error_vs_time(study, ax=None, *, notes=None):
         Line2D([], [], ls="none", marker=m, color="0.3", ms=5, label=f"{side} the reference")
         for m, side in (("^", "above"), ("v", "below"))
     ]
+    if unc > 0 and any(r.error <= unc for r in rows):
+        handles.append(
+            Line2D([], [], ls="none", marker="^", color="0.3", mfc="white", ms=5, label="hollow: inside its error bar")
+        )
     ax.legend(handles=handles, fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     return ax
 

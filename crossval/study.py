@@ -163,11 +163,16 @@ def convergence(resolutions, errors, *, floor: float = 0.0) -> Convergence:
     order = np.argsort(x)
     x, e = x[order], e[order]
     c = _envelope(x, e)
+    if len(x) == 1:
+        # one run bounds nothing: c/N through one point is that point, not an envelope
+        return Convergence("none", reason="one resolution")
     resolved = np.abs(e) > floor
     if not np.all(resolved):
         if not np.any(resolved):
             return Convergence("none", reason="every error is below the reference's error bar")
-        return Convergence("envelope", constant=c, reason="errors below the reference's error bar")
+        below = ", ".join(f"{v:.3g}" for v in x[~resolved])
+        reason = f"the errors at N = {below} are below the reference's error bar"
+        return Convergence("envelope", constant=c, reason=reason)
     if len(x) < 3:
         return Convergence(
             "envelope", constant=c, reason=f"{len(x)} resolution{'s' if len(x) != 1 else ''}, a rate needs 3"

@@ -197,6 +197,18 @@ def test_two_resolutions_are_not_a_rate():
     assert c.kind == "envelope" and "needs 3" in c.text
 
 
+def test_one_resolution_claims_neither_a_rate_nor_an_envelope():
+    # c/N through a single run is that run's error times N: it bounds nothing
+    c = convergence([1.0], [0.0788])
+    assert c.kind == "none" and "c/N" not in c.text and "one resolution" in c.text
+
+
+def test_errors_partly_inside_the_reference_bar_say_which():
+    # only the finer two runs are unresolved; the coarsest (2.2 %) is not
+    c = convergence([16, 24, 32], [0.022, 0.005, 0.003], floor=0.0074)
+    assert c.kind == "envelope" and "N = 24, 32" in c.text and "16" not in c.reason
+
+
 def test_a_collapse_through_zero_is_not_a_high_order():
     # |error| falls monotonically but the last point sits next to a sign change: a line
     # through three points with a collapsing end is not a power law
@@ -330,3 +342,31 @@ def test_scene_tables_name_each_reference_value_and_show_no_pull_off_for_a_press
     assert "<td>upper_force</td>" in square and "bounds (Eqs. 13, 18)" in square
     presses = re.findall(r"<tr><td>[^<]*\(w = 0\)</td>.*?</tr>", square)
     assert presses and all("<td>- (w = 0)</td><td>-</td>" in row for row in presses)
+
+
+def test_values_without_a_check_are_listed_not_passed_over():
+    # the quick report checks the energy BEM's stiffness on the square but not its F_A (its
+    # coarse sequence gives no bar): "all checks passed" must not read as covering it
+    from types import SimpleNamespace
+
+    from crossval.report import unchecked_values
+
+    finest = {
+        "bem_griffith": SimpleNamespace(pulloff_force=5.29, pulloff_approach=-2.5, stiffness=2.26),
+        "bem_energy": SimpleNamespace(pulloff_force=5.70, pulloff_approach=-2.4, stiffness=2.27),
+        "bem_energy on bem_griffith's grid (w = 0)": SimpleNamespace(pulloff_force=0.0, stiffness=2.26),
+    }
+    checks = [
+        SimpleNamespace(method="bem_griffith", quantity="pulloff_force"),
+        SimpleNamespace(method="bem_griffith", quantity="stiffness"),
+        SimpleNamespace(method="bem_energy", quantity="stiffness"),
+        SimpleNamespace(method="bem_energy", quantity="pulloff_force bracket"),
+    ]
+    theory = {"pulloff_force": 5.29, "pulloff_approach": -2.39, "stiffness": 2.30, "upper_force": 6.0}
+    assert unchecked_values(finest, checks, theory) == [
+        ("bem_griffith", "pulloff_approach"),
+        ("bem_energy", "pulloff_approach"),
+    ]
+    # no reference for a quantity: nothing to check it against, so not listed
+    assert unchecked_values(finest, checks[:3], {"stiffness": 2.3}) == []
+    assert ("bem_energy", "pulloff_force") in unchecked_values(finest, checks[:3], theory)
