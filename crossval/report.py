@@ -146,6 +146,15 @@ def unchecked_values(finest: dict, checks: Sequence, theory: dict) -> list[tuple
     ]
 
 
+#: what the numbers of the scenes' tables and panels are measured in
+UNITS_NOTE = (
+    "Forces, approaches, stiffnesses and areas are in each scene's own units: the suite's scenes are "
+    "dimensionless (face radius or side of order 1, E* and w of order 1; `crossval scene check NAME` "
+    "prints a scene with its closed-form scales).  Tension is negative: F_A is the largest tension, "
+    "d at F_A the approach there, 'initial area' the contact area when the pull starts."
+)
+
+
 #: the line under the agreement map: what its cells and its hatched cells mean
 AGREEMENT_CAPTION = (
     "Each cell: |F_A / reference - 1| of the method's finest run, against the scene's reference "
@@ -498,7 +507,7 @@ def report(
         )
         + "; "
         f"{wall:.0f} s.</p><h2>Agreement</h2><img src='data:image/png;base64,{agreement_png}' alt='agreement'>"
-        f"<p>{html.escape(AGREEMENT_CAPTION)}</p>" + "".join(sections) + extreme_html
+        f"<p>{html.escape(AGREEMENT_CAPTION)}</p><p>{html.escape(UNITS_NOTE)}</p>" + "".join(sections) + extreme_html
     )
     _write_atomic(out / "index.html", page.encode())
     _write_atomic(out / "results.json", json_dumps(data, indent=1).encode())
