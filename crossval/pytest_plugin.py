@@ -8,6 +8,9 @@ def test_my_solver(adhesion_reference):
 
 from __future__ import annotations
 
+import os
+from pathlib import Path
+
 import pytest
 
 
@@ -21,14 +24,31 @@ def adhesion_reference():
         ``get(scene_or_name, *, resolution=64)`` -> :class:`crossval.Reference`, as
         :func:`crossval.reference` computes it (a built-in scene's name, a scene file's path or a
         :class:`contact_scene.Scene`; elements per radius of the Griffith BEM where the FEM does
-        not apply); a name, or the same Scene object, at one resolution is solved once per session.
+        not apply); a name, a file (by its resolved path) or an equal Scene, at one resolution, is
+        solved once per session.
     """
     from .reference import reference
 
-    cache = {}
+    cache: dict = {}
+    # objects keyed by identity stay referenced here: an id is unique only while its object
+    # lives, and a Path built inline in the call was collected and its id reused for another
+    # file's, which then received the first file's reference
+    pinned: list = []
+
+    def key_of(scene_or_name):
+        if isinstance(scene_or_name, str):
+            return ("name or path", scene_or_name)
+        if isinstance(scene_or_name, os.PathLike):
+            return ("path", str(Path(scene_or_name).resolve()))
+        try:
+            hash(scene_or_name)
+        except TypeError:
+            pinned.append(scene_or_name)
+            return ("object", id(scene_or_name))
+        return ("scene", scene_or_name)  # equal scenes (frozen dataclasses) share a reference
 
     def get(scene_or_name, *, resolution: float = 64):
-        key = (scene_or_name if isinstance(scene_or_name, str) else id(scene_or_name), resolution)
+        key = (key_of(scene_or_name), resolution)
         if key not in cache:
             cache[key] = reference(scene_or_name, resolution=resolution)
         return cache[key]

@@ -118,6 +118,30 @@ def test_plugin_failure_shows_the_message_not_the_library(pytester):
     assert "+5.000%" in text and "bad.append" not in text and "__tracebackhide__" not in text
 
 
+def test_plugin_fixture_gives_each_scene_file_its_own_reference(pytester):
+    # Paths built inline are collected between calls and their ids reused: keyed by id, the
+    # fixture handed the E = 1 file the E = 16 file's reference
+    for E in (1.0, 4.0, 16.0):
+        pytester.makefile(
+            ".toml",
+            **{
+                f"circle_E{E:g}": "[indenter]\nshape = 'circle'\nradius = 1.0\n[material]\nmodel = 'homogeneous'\n"
+                f"youngs_modulus = {E}\npoisson_ratio = 0.3\n[adhesion]\nwork_of_adhesion = 1.0\n"
+            },
+        )
+    pytester.makepyfile("""
+        import gc
+        from pathlib import Path
+
+        def test_x(adhesion_reference):
+            for E in (1, 4, 16, 1, 4, 16):
+                ref = adhesion_reference(Path(f"circle_E{E}.toml"), resolution=16)
+                gc.collect()
+                assert ref.scene.material.youngs_modulus == E
+    """)
+    pytester.runpytest().assert_outcomes(passed=1)
+
+
 def test_reference_takes_a_scene_file_path():
     from crossval.suite import SCENE_DIR
 
