@@ -45,6 +45,26 @@ __all__ = [
 ]
 
 
+def relative_difference(value: float, reference: float) -> float:
+    """``value / reference - 1``; against a zero reference, 0 for a value of exactly zero (a scene
+    without adhesion, w = 0, has F_A = 0 and its approach 0 in closed form and in every method)
+    and infinite otherwise.
+
+    Parameters
+    ----------
+    value, reference : float
+        The value checked and what it is compared with.
+
+    Returns
+    -------
+    float
+        The relative difference.
+    """
+    if reference:
+        return value / reference - 1
+    return 0.0 if value == 0 else math.inf
+
+
 @dataclass(frozen=True)
 class Check:
     """One check of a result (or a pair of results) against a reference, with its tolerance.
@@ -97,8 +117,8 @@ class Check:
 
     @property
     def difference(self) -> float:
-        """The relative difference ``value / reference - 1`` (infinite for a zero reference)."""
-        return self.value / self.reference - 1 if self.reference else math.inf
+        """The relative difference ``value / reference - 1`` (:func:`relative_difference`)."""
+        return relative_difference(self.value, self.reference)
 
     @property
     def passed(self) -> bool:

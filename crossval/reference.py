@@ -13,6 +13,7 @@ import numpy as np
 import contact_scene as cs
 
 from . import face_references
+from .compare import relative_difference
 from .methods import reference_method
 from .suite import load_scene_or_builtin
 
@@ -241,7 +242,7 @@ def assert_matches_reference(
             continue
         tol = own + rtol
         want = ref.value(name)
-        diff = value / want - 1 if want else math.inf
+        diff = relative_difference(value, want)
         if not abs(diff) <= tol:
             bad.append(
                 f"{name}: {value:.6g} vs reference {want:.6g} ({ref.source}): {diff:+.3%}, "

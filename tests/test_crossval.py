@@ -142,6 +142,20 @@ def test_plugin_fixture_gives_each_scene_file_its_own_reference(pytester):
     pytester.runpytest().assert_outcomes(passed=1)
 
 
+def test_a_scene_without_adhesion_passes_its_zero_force_checks():
+    # w = 0 is a valid scene (F_A = 0, d = 0 in closed form and in every method): a zero
+    # reference made every relative difference infinite, so compare failed exact answers
+    sc = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(0.0))
+    comparison = crossval.compare(sc, resolution=8)
+    zero = [c for c in comparison.checks if c.quantity in ("pulloff_force", "pulloff_approach")]
+    assert zero and all(c.difference == 0 and c.passed for c in zero)
+    assert comparison.passed
+    ref = crossval.reference(sc)
+    crossval.assert_matches_reference(ref, pulloff_force=0.0, stiffness=ref.result.stiffness)
+    with pytest.raises(AssertionError, match="pulloff_force"):
+        crossval.assert_matches_reference(ref, pulloff_force=-1e-3)
+
+
 def test_reference_takes_a_scene_file_path():
     from crossval.suite import SCENE_DIR
 
