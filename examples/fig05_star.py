@@ -2,12 +2,18 @@
 Figs. 5-6: a star and complicated shapes
 ========================================
 
-A star punch detaches from the tips inward and ends close to its incircle: normalised by the
+A star punch detaches from the tips inward and ends close to its incircle.  Normalised by the
 incircle's Kendall force and approach (the lower bound, Eqs. 18-19), its last stable state
-lies near (1, 1).  Fig. 6's "complicated shapes" (here a cross and an irregular concave
-polygon) also lose their first cells at convex corners and end at an approach near the
-incircle's, but keep more than the incircle: a cross's arms behave like short strips (Figs.
-10-11), so its last stable force is 2.2-2.5 times the lower bound.
+lies at d / d_lower = 1.04-1.08 and F / F_lower = 1.16-1.35 (measured at 12, 16, 24, 32, 48
+elements per radius sqrt(A/pi): d / d_lower = 1.079, 1.067, 1.055, 1.051, 1.042 and
+F / F_lower = 1.174, 1.351, 1.225, 1.200, 1.158).  The approach is the incircle's within a
+few per cent and moves toward it; the force, above the lower bound, is not converged: the
+short version's star (16 per radius) shows the largest, 1.35.
+
+Fig. 6's "complicated shapes" (here a cross and an irregular concave polygon) also lose
+their first cells at convex corners and end at an approach near the incircle's, but keep
+more than the incircle: a cross's arms behave like short strips (Figs. 10-11), so its last
+stable force is 2.2-2.5 times the lower bound.
 
 Top row: the star when its first cells go (circled in red), half-way, and in its last stable
 state, and a 3-D view of the surface half-way through the detachment; bottom row: the cross
@@ -33,6 +39,8 @@ except ImportError:
     import _gallery
 
 STAR = cs.Star(5, 1.0, 0.45)
+#: the full version's elements per radius
+FULL_N = 48
 #: Fig. 6's "complicated shapes": a cross and an irregular concave polygon
 CROSS = cs.Polygon(
     (
@@ -99,6 +107,7 @@ def run(resolution: float = 16, *, fields: bool = False, shape=STAR) -> dict:
         "last_stable_normalised": (ls.approach / d_lo, ls.force / -F_lo),
         "last_area_over_incircle": ls.contact_area / (np.pi * inc**2),
         "mid": snaps[d_mid],
+        "shape": shape,
     }
 
 
@@ -118,7 +127,7 @@ def plot(outs: dict, path=None):
 
     from crossval.plotting import plot_surface
 
-    fig = plt.figure(figsize=(14, 7.8), layout="constrained")
+    fig = plt.figure(figsize=(14, 8.8), layout="constrained")
 
     def first_loss(ax, s, face, name):
         _gallery.contact_map(ax, s, face, title=f"{name}: first cells lost (circled)\nd = {s.approach:.3f}")
@@ -132,11 +141,18 @@ def plot(outs: dict, path=None):
     for i, (s, what) in enumerate(
         ((star["snapshots"][1], "half-way"), (star["result"].last_stable, "last stable state"))
     ):
-        _gallery.contact_map(fig.add_subplot(2, 4, i + 2), s, face, title=f"star: {what}\nd = {s.approach:.3f}")
+        title = f"star: {what}\nd = {s.approach:.3f}"
+        if i == 1:
+            d, F = star["last_stable_normalised"]
+            title += f"\nd/d_lower = {d:.3f}, F/F_lower = {F:.2f}"
+        _gallery.contact_map(fig.add_subplot(2, 4, i + 2), s, face, title=title)
     ax3 = fig.add_subplot(2, 4, 4, projection="3d")
     plot_surface(star["mid"], ax3, stride=2)
-    ax3.set_title(f"star half-way: surface -u\n(dark: in contact), d = {star['mid'].approach:.3f}", fontsize=9)
-    ax3.set_zlabel("-u")
+    ax3.set_title(
+        f"star half-way: surface displacement\n-u in sqrt(w R / E*) (dark: in contact)\nd = {star['mid'].approach:.3f}",
+        fontsize=9,
+    )
+    ax3.set_zlabel("-u / sqrt(w R / E*)")
     ax3.set_box_aspect(None, zoom=0.85)
     col = 5
     for name, shape in (("cross", CROSS), ("irregular", IRREGULAR)):
@@ -146,15 +162,27 @@ def plot(outs: dict, path=None):
         f = _face_mask(o["result"], shape)
         first_loss(fig.add_subplot(2, 4, col), o["snapshots"][0], f, name)
         ls = o["result"].last_stable
+        d, F = o["last_stable_normalised"]
         _gallery.contact_map(
-            fig.add_subplot(2, 4, col + 1), ls, f, title=f"{name}: last stable state\nd = {ls.approach:.3f}"
+            fig.add_subplot(2, 4, col + 1),
+            ls,
+            f,
+            title=f"{name}: last stable state\nd = {ls.approach:.3f}\nd/d_lower = {d:.3f}, F/F_lower = {F:.2f}",
         )
         col += 2
     lost = Line2D([], [], ls="none", marker="o", mfc="none", mec="r", ms=9, label="first cells lost")
     fig.legend(handles=_gallery.contact_handles([lost]), loc="outside lower center", fontsize=8, ncols=3)
+    per_radius = {n: o["shape"].equivalent_radius / o["result"].grid_spacing for n, o in outs.items()}
+    grids = ", ".join(f"{n} {N:.0f}" for n, N in per_radius.items())
+    converged = (
+        ""
+        if min(per_radius.values()) >= FULL_N
+        else f"\nshort version, not converged (the full version: {FULL_N} per radius; the docstring gives both)"
+    )
     fig.suptitle(
-        "Figs. 5-6: contact (black) on the face (grey); lengths in units of the star's tip radius,"
-        " approach d in sqrt(w R / E*)",
+        "Figs. 5-6: contact (black) on the face (grey); R = 1 the length unit (the star's tip radius), E* = w = 1:"
+        " lengths in R, approach d and displacement u in sqrt(w R / E*)\n"
+        f"Griffith BEM, elements per radius sqrt(A/pi): {grids}" + converged,
         fontsize=10,
     )
     if path is not None:
@@ -178,8 +206,8 @@ def main(path=None) -> None:
 
     matplotlib.use("Agg")
     outs = {
-        "star": run(resolution=48, fields=True),
-        **{name: run(resolution=48, shape=shape) for name, shape in (("cross", CROSS), ("irregular", IRREGULAR))},
+        "star": run(resolution=FULL_N, fields=True),
+        **{name: run(resolution=FULL_N, shape=shape) for name, shape in (("cross", CROSS), ("irregular", IRREGULAR))},
     }
     plot(outs, path or _gallery.picture_path("fig05_star"))
     report(outs)
