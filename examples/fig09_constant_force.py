@@ -8,7 +8,9 @@ Eq. 28 gives F = sqrt(8 pi E* a^3 phi(a) w) for a contact of outer radius a and 
 factor phi(a); with phi = (r0/a)^3 (Eq. 29) a drops out, F = F0 = sqrt(8 pi E* w r0^3).  For
 comparison, a full disc's Kendall force grows like a^(3/2): a factor 1.84 between a = 0.6 and
 0.9 of the outer radius.  The outer radius a of the remaining contact is read off its area,
-A(a) = 3 pi r0^2 - 2 pi r0^3 / a for the designed face.
+A(a) = 3 pi r0^2 - 2 pi r0^3 / a for the designed face.  The right panel draws the full
+disc's Kendall force, (a / r0)^(3/2) in units of F0, and the same power scaled to the
+plateau at the window's smallest a, a guide to compare the slopes.
 
 The level of the plateau is not F0: Eq. 28 takes the stiffness of the full disc of radius a,
 while the star's stiffness grows more slowly with a (thin rays add little), and
@@ -75,12 +77,13 @@ def plot(out: dict, path=None):
     import matplotlib.pyplot as plt
 
     r = out["result"]
-    fig, axs = plt.subplots(1, 3, figsize=(12, 4.0), layout="constrained")
+    fig, axs = plt.subplots(1, 3, figsize=(12.5, 4.3), layout="constrained")
     _gallery.contact_map(
         axs[0],
         r.last_stable,
         cs.rasterise(out["shape"], r.grid_spacing).mask,
-        title=f"last stable contact (core radius r0 = {R0:g})",
+        title=f"last stable contact (core radius r0 = {R0:g})\n"
+        f"Griffith BEM, {R0 / r.grid_spacing:.0f} elements per core radius",
     )
     _gallery.contact_legend(axs[0], loc="lower left", fontsize=6, framealpha=0.9)
     c = r.curve
@@ -102,13 +105,19 @@ def plot(out: dict, path=None):
     axs[1].legend(fontsize=7, loc="lower center")
     axs[2].plot(out["radius"], out["force"], ".", color="C1", label="BEM, detachment under way")
     a = np.linspace(out["radius"].min(), out["radius"].max(), 50)
+    axs[2].plot(a, (a / R0) ** 1.5, "-", color="0.4", label="a full disc of radius a: Kendall (Eq. 6), (a / r0)^(3/2)")
     axs[2].plot(
-        a, out["plateau_level"] * (a / a[0]) ** 1.5, "--", color="C2", label="a full disc's Kendall force, ~ a^(3/2)"
+        a,
+        out["plateau_level"] * (a / a[0]) ** 1.5,
+        "--",
+        color="C2",
+        label="slope guide ~ a^(3/2), scaled to the plateau's\nmedian at the window's smallest a",
     )
-    axs[2].set_xlabel("outer radius a of the contact (the face's: 1)")
+    axs[2].set_xlabel("outer radius a of the contact (from the contact\narea through the designed A(a); the face's: 1)")
     axs[2].set_ylabel("-F / F0")
     axs[2].set_title(f"plateau: max / min = {out['plateau_spread']:.3f} (a disc: {out['disc_spread']:.2f})", fontsize=9)
-    axs[2].legend(fontsize=7, loc="upper left")
+    axs[2].legend(fontsize=7, loc="lower right")
+    axs[2].set_ylim(bottom=0)
     if path is not None:
         fig.savefig(path, dpi=120)
     return fig

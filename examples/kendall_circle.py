@@ -38,6 +38,7 @@ def run(resolution: float = 16, fem_grading: float = 2.0) -> dict:
         "kendall_approach": T.kendall_critical_approach(E_star=E, radius=1.0, work=1.0),
         "bem": bem,
         "fem": fem,
+        "fem_grading": fem_grading,
     }
 
 
@@ -56,7 +57,13 @@ def plot(out: dict, path=None):
         alpha=0.4,
         label="Kendall: F = 2 E* a d up to d_c (Eqs. 1, 4-6)",
     )
-    for key, label, style in (("bem", "Griffith BEM, 64 elements per radius", "-"), ("fem", "FEM reference", "--")):
+    N = 1.0 / out["bem"].grid_spacing  # the circle's radius is 1
+    labels = {
+        "bem": f"Griffith BEM, {N:.0f} elements per radius",
+        "fem": "FEM reference" + (f", mesh grading {out['fem_grading']:g}" if "fem_grading" in out else ""),
+    }
+    for key, style in (("bem", "-"), ("fem", "--")):
+        label = labels[key]
         r = out[key]
         ax.plot(
             r.curve.approach / dK,
