@@ -85,6 +85,14 @@ def test_energy_example_extrapolates_toward_kendall():
     # the extrapolations measured over different ratio sets and grids (README, energy BEM)
     # landed between -1.0 % (these three ratios on 16 per radius) and +1.35 %
     assert abs(out["extrapolated"] - 1) <= 0.015
+    # the picture draws the solver's own fit (re-fitted with the same model) and its estimate
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from examples.energy_zero_range import fit, plot
+
+    assert abs(fit(out)[0] - out["extrapolated"]) <= 1e-9
+    assert picture_problems(plot(out)) == []
 
 
 def test_fig07_faults_scale_with_sqrt_filling_factor():
@@ -171,6 +179,12 @@ def test_fig08_brushes_collapse_onto_one_master_curve_in_sqrt_phi():
         assert o["last_stable_reach"] < 1.25, name  # ends near the incircle, as the square
         if name != "square":  # splitting never enhances adhesion
             assert o["F_over_lower"] < b["square"]["F_over_lower"], name
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from examples.fig08_brushes import plot
+
+    assert picture_problems(plot(out)) == []
 
 
 def test_fig09_power_law_star_gives_a_force_plateau():
