@@ -57,6 +57,7 @@ def error_bars(
             zero_range_estimate,
             "the zero-range extrapolation's estimate (bounds every window of tests/data/zero_range_study.json)",
             # the limits the finest step allows (bem_energy.tail_bracket): the limit lies between them
+            # if the tail's effective rate lies in RATE_BRACKET, the assumption the estimate rests on
             interval=None if zero_range_bracket is None else (min(zero_range_bracket), max(zero_range_bracket)),
         )
     return bars

@@ -174,8 +174,11 @@ class ErrorBar:
         matching it validates nothing.
     interval : tuple of float or None
         Where the method also brackets the exact value itself, ``(low, high)`` in the quantity's
-        units (the energy BEM's zero-range limit: the two limits its last step allows); the
-        exact value lies inside it, which is a sharper claim on one side than ``relative``.
+        units (the energy BEM's zero-range limit: the two limits its last step allows, for a tail
+        whose effective rate lies in ``bem_energy.zero_range.RATE_BRACKET``); the exact value lies inside it
+        under that assumption, a sharper claim on one side than ``relative``, and one that
+        fails where the assumption does (a coarse sequence whose finest range is 0.08 of the
+        radius left Kendall's force 0.2 per cent above it: ``examples/energy_zero_range.py``).
         None otherwise.
     """
 
