@@ -216,7 +216,8 @@ def reference_source(theory: dict, quantity: str) -> str:
 def reference_values(scene: cs.Scene) -> dict:
     """Closed-form values for the scene where the sheet has them, and the reference table's
     converged values (with their relative bars under ``"bars"`` and sources under ``"sources"``)
-    for the faces it holds (:mod:`crossval.face_references`)."""
+    for the faces it holds (:mod:`crossval.face_references`); for a finite adhesion range the
+    stiffness only (the others are the zero-range limit's)."""
     shape, mat, w = scene.indenter.shape, scene.material, scene.adhesion.work_of_adhesion
     prof = scene.indenter.profile
     out: dict[str, Any] = {}
@@ -254,6 +255,14 @@ def reference_values(scene: cs.Scene) -> dict:
             stiffness=T.graded_stiffness(E0=E0, c0=c0, k=k, radius=shape.radius),
             source="graded (Eqs. 34, 38, 39)",
         )
+    if scene.adhesion.range is not None and w > 0:
+        # the closed forms and the table are the zero-range limit: a finite range's forces and
+        # approaches are not theirs (the stiffness, without adhesion, is)
+        for q in ("pulloff_force", "pulloff_approach", "upper_force", "lower_force"):
+            out.pop(q, None)
+        for part in ("bars", "sources"):
+            if part in out:
+                out[part] = {q: v for q, v in out[part].items() if q == "stiffness"}
     return out
 
 

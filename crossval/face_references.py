@@ -96,7 +96,8 @@ def for_scene(scene: cs.Scene) -> dict[str, FaceReference]:
     """The table's values for ``scene`` in its own units, by quantity; empty if none apply.
 
     Applies to a flat punch of one of the table's faces (the same shape and size as the built-in
-    scene of that name) on a homogeneous half-space, at any E* and w.
+    scene of that name) on a homogeneous half-space, at any E* and w; with a finite adhesion range
+    the stiffness only (the forces and approaches are the zero-range limit's).
 
     Parameters
     ----------
@@ -133,6 +134,8 @@ def for_scene(scene: cs.Scene) -> dict[str, FaceReference]:
         ref = entry.get("reference")
         if q not in scale or not ref:
             continue
+        if q != "stiffness" and scene.adhesion.range is not None:
+            continue  # the table is the zero-range limit; the stiffness does not see the adhesion
         by_method = tuple(
             FaceReference(entry[m]["value"] * scale[q], entry[m]["relative_bar"], source(m), m)
             for m in ("bem_griffith", "bem_energy")

@@ -269,8 +269,18 @@ def _coarsest_grid(scene: Scene) -> float:
     return MIN_INCIRCLE_CELLS * shape.equivalent_radius / (2 * shape.smallest_part_incircle().radius)
 
 
+def _zero_range_only(scene: Scene, name: str) -> str | None:
+    """Why a zero-range method does not represent a scene with a finite interaction range: it
+    would solve the Griffith limit and ignore the range without a word."""
+    rho = scene.adhesion.range
+    if rho is not None and scene.adhesion.work_of_adhesion > 0:
+        return f"{name} models zero-range (Griffith) adhesion; the scene's adhesion.range = {rho:g} is finite"
+    return None
+
+
 def _griffith_applies(scene: Scene) -> str | None:
-    return None  # any face, profile, homogeneous or power-law graded half-space
+    # any face, profile, homogeneous or power-law graded half-space, at zero range
+    return _zero_range_only(scene, "bem_griffith")
 
 
 def _griffith_resolution(scene: Scene) -> Resolution:
@@ -290,7 +300,7 @@ def _griffith_resolution(scene: Scene) -> Resolution:
 def _fem_applies(scene: Scene) -> str | None:
     from fem_reference import applies
 
-    return applies(scene)
+    return _zero_range_only(scene, "fem_reference") or applies(scene)
 
 
 def _fem_resolution(scene: Scene) -> Resolution:

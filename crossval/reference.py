@@ -144,7 +144,17 @@ def reference(scene_or_name, *, resolution: float = 64) -> Reference:
     else:
         grid = reference_method(scene, "sequence")
         if grid is None:
-            raise cs.SceneError("scene", "no registered method can give a reference for this scene")
+            finite = scene.adhesion.range is not None and scene.adhesion.work_of_adhesion > 0
+            raise cs.SceneError(
+                "scene",
+                "no registered method can give a reference for this scene"
+                + (
+                    f" (adhesion.range = {scene.adhesion.range:g} is finite: the reference methods model zero "
+                    "range, and bem_energy, which models a finite one, has no error bar on its pull-off there)"
+                    if finite
+                    else ""
+                ),
+            )
         method, r = grid.name, grid.solve(scene, resolution=resolution)
     if not r.converged:
         raise RuntimeError(f"the reference solve ({method}) did not converge: {'; '.join(r.messages)}")

@@ -156,6 +156,29 @@ def test_a_scene_without_adhesion_passes_its_zero_force_checks():
         crossval.assert_matches_reference(ref, pulloff_force=-1e-3)
 
 
+def test_a_finite_range_is_never_judged_by_zero_range_methods_or_values():
+    # bem_griffith and the FEM model zero range: given adhesion.range they solved the Griffith
+    # limit without a word, and the plugin then held a finite-range curve to Kendall's force
+    from crossval.compare import reference_values
+    from crossval.methods import METHODS, applicable_methods
+
+    circle = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0, 0.3))
+    assert [m.name for m in applicable_methods(circle)] == ["bem_energy"]
+    for name in ("bem_griffith", "fem_reference"):
+        assert "adhesion.range = 0.3" in METHODS[name].applies(circle)
+    with pytest.raises(cs.SceneError, match="adhesion.range = 0.3 is finite"):
+        crossval.reference(circle)
+    assert set(reference_values(circle)) == {"stiffness", "source"}
+    # a face of the reference table keeps its stiffness (no adhesion in it), not its forces
+    from crossval.suite import load_scene_or_builtin
+
+    square = load_scene_or_builtin("square")
+    finite = dataclasses.replace(square, adhesion=cs.Adhesion(square.adhesion.work_of_adhesion, 0.3))
+    values = reference_values(finite)
+    assert "pulloff_force" not in values and "stiffness" in values and set(values["bars"]) == {"stiffness"}
+    assert "pulloff_force" in reference_values(square)
+
+
 def test_reference_takes_a_scene_file_path():
     from crossval.suite import SCENE_DIR
 
