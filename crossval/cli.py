@@ -205,7 +205,9 @@ def scene_check(file, as_json):
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON (fixed keys for every method).")
 @_scene_errors_exit_2
 def solve_cmd(file, method_name, resolution, range_, as_json):
-    """Run one method on the scene in FILE (a scene file, or a built-in scene's name)."""
+    """Run one method on the scene in FILE (a scene file, or a built-in scene's name).
+
+    Exit status 1 when the solve did not converge (its notes say why)."""
     sc = load_scene(file)
     method = get_method(method_name)
     if range_ is not None:
@@ -225,7 +227,15 @@ def solve_cmd(file, method_name, resolution, range_, as_json):
         res = method.solve(sc, resolution=resolution, callback=lambda d, F, A: live.point(method.name, d, F, A))
     if as_json:
         click.echo(json_dumps(res.to_json()))
-        return
+    else:
+        _print_result(res)
+    if not res.converged:
+        # a script reading the status must not take an unconverged solve for an answer
+        ctx = click.get_current_context()
+        ctx.exit(1)
+
+
+def _print_result(res) -> None:
     rows = [
         ("method", res.method),
         ("pulloff_force", res.pulloff_force),

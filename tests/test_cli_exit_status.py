@@ -96,3 +96,15 @@ def test_regress_writes_passes_and_exits_1_on_a_changed_value(tmp_path, monkeypa
     assert bad.exit_code == 1, bad.output
     (line,) = [line for line in bad.output.splitlines() if line.startswith("MISMATCH")]
     assert "bem_griffith" in line and "pulloff_force" in line and "1 mismatches" in bad.output
+
+
+def test_solve_exits_1_when_the_solve_did_not_converge():
+    # a process zone below one element: the energy BEM says it did not converge, and the exit
+    # status must say so too (it was 0, which a script takes for an answer)
+    ok = _run("solve", "kendall_circle", "--method", "bem_energy", "--range", "0.5", "--resolution", "16")
+    assert ok.exit_code == 0, ok.output
+    bad = _run("solve", "kendall_circle", "--method", "bem_energy", "--range", "0.3", "--resolution", "8")
+    assert bad.exit_code == 1, bad.output
+    assert "converged         no" in bad.output or "converged         False" in bad.output
+    as_json = _run("solve", "kendall_circle", "--method", "bem_energy", "--range", "0.3", "--resolution", "8", "--json")
+    assert as_json.exit_code == 1 and json.loads(as_json.output)["converged"] is False
