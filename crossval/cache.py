@@ -1,4 +1,5 @@
-"""On-disk cache of results, keyed by scene, method, resolution and package version.
+"""On-disk cache of results, keyed by scene, method, resolution, package version and the
+solvers' source code.
 
 Each entry is one ``.npz`` file: the result's arrays, plus its scalars, strings and nesting as
 JSON text.  Both are data only: loading an entry never runs code, so a cache directory copied
@@ -14,6 +15,7 @@ entries (both compute the same deterministic result; the last rename wins).
 from __future__ import annotations
 
 import dataclasses
+import functools
 import hashlib
 import json
 import logging
@@ -28,7 +30,7 @@ import numpy as np
 
 from contact_scene import Curve, ErrorBar, Result, Snapshot, SolverStats
 
-__all__ = ["ResultCache", "package_version", "encode_result", "decode_result", "FORMAT"]
+__all__ = ["ResultCache", "package_version", "source_digest", "encode_result", "decode_result", "FORMAT"]
 
 log = logging.getLogger("crossval")
 
@@ -43,6 +45,40 @@ def package_version() -> str:
         return metadata.version("adhesive-punch")
     except metadata.PackageNotFoundError:  # pragma: no cover - running from a source tree
         return "0+unknown"
+
+
+#: the packages whose code decides a result, and the harness's mapping of resolutions to settings
+_RESULT_SOURCES = ("contact_scene", "halfspace", "bem_griffith", "bem_energy", "fem_reference")
+
+
+@functools.cache
+def source_digest() -> str:
+    """A digest of the source (``.py``) and data (``.json``) files of the packages that compute
+    results, and of ``crossval/methods.py``.
+
+    The package version alone does not change while a checkout is edited (an editable install):
+    a solver changed in place reused every cached result computed before, so a broken solver
+    passed a report.  Hashing the files makes any edit a cache miss.
+
+    Returns
+    -------
+    str
+        A hexadecimal digest.
+    """
+    import importlib.util
+
+    h = hashlib.sha256()
+    roots = []
+    for name in _RESULT_SOURCES:
+        spec = importlib.util.find_spec(name)
+        if spec is not None and spec.submodule_search_locations:
+            roots.append(Path(next(iter(spec.submodule_search_locations))))
+    files = [f for root in roots for pattern in ("*.py", "*.json") for f in root.rglob(pattern)]
+    files.append(Path(__file__).with_name("methods.py"))
+    for f in sorted(files):
+        h.update(f.name.encode())
+        h.update(f.read_bytes())
+    return h.hexdigest()
 
 
 def encode_result(result: Result) -> tuple[str, dict[str, np.ndarray]]:
@@ -117,7 +153,7 @@ class ResultCache:
 
     @staticmethod
     def key(scene, method: str, resolution) -> str:
-        text = "\n".join([repr(scene), method, repr(resolution), package_version()])
+        text = "\n".join([repr(scene), method, repr(resolution), package_version(), source_digest()])
         return hashlib.sha256(text.encode()).hexdigest()[:32]
 
     def path(self, key: str) -> Path:

@@ -240,3 +240,15 @@ def test_full_report_checks_the_default_result_not_the_sweeps_finest(tmp_path, m
     assert energy_force_check(full).value == wrong.pulloff_force and not energy_force_check(full).passed
     data = _strict_json((tmp_path / "f" / "results.json").read_text())
     assert data["scenes"]["kendall_circle"]["finest"]["bem_energy"]["pulloff_force"] == wrong.pulloff_force
+
+
+def test_an_edited_solver_is_a_cache_miss(monkeypatch):
+    # the version of an editable install does not change while its code does: a solver broken
+    # in place reused every cached result, and a report passed
+    import crossval.cache as cache_module
+
+    before = ResultCache.key(JOBS[0].scene, JOBS[0].method, JOBS[0].resolution)
+    digest = cache_module.source_digest()
+    assert len(digest) == 64 and digest == cache_module.source_digest()
+    monkeypatch.setattr(cache_module, "source_digest", lambda: "0" * 64)
+    assert ResultCache.key(JOBS[0].scene, JOBS[0].method, JOBS[0].resolution) != before
