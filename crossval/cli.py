@@ -356,8 +356,15 @@ def _progress(total: int, desc: str):
 
 
 def _compare_quick(sc) -> dict:
-    """``compare --quick``: each method's own quick resolution, where it has one."""
-    return {m.name: m.sweeps.compare_quick for m in applicable_methods(sc) if m.sweeps.compare_quick is not None}
+    """``compare --quick``: each method's own quick resolution, where it has one and its resolution
+    is not a grid on this scene (the energy BEM's elements per process zone of its zero-range
+    sequence; at a finite range or without adhesion its resolution is elements per radius,
+    which ``--resolution`` gives)."""
+    return {
+        m.name: m.sweeps.compare_quick
+        for m in applicable_methods(sc)
+        if m.sweeps.compare_quick is not None and not m.resolution_is_grid(sc)
+    }
 
 
 @main.command("report")

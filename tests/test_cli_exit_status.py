@@ -108,3 +108,17 @@ def test_solve_exits_1_when_the_solve_did_not_converge():
     assert "converged         no" in bad.output or "converged         False" in bad.output
     as_json = _run("solve", "kendall_circle", "--method", "bem_energy", "--range", "0.3", "--resolution", "8", "--json")
     assert as_json.exit_code == 1 and json.loads(as_json.output)["converged"] is False
+
+
+@pytest.mark.parametrize("adhesion", ["work_of_adhesion = 1.0\nrange = 0.5", "work_of_adhesion = 0.0"])
+def test_compare_quick_takes_a_finite_range_or_no_adhesion(tmp_path, adhesion):
+    # --quick gave the energy BEM its zero-range sequence's resolution (1 element per process
+    # zone) where its resolution is elements per radius, and refused the user's scene for it
+    scene = tmp_path / "circle.toml"
+    scene.write_text(
+        "[indenter]\nshape = 'circle'\nradius = 1.0\n[material]\nmodel = 'homogeneous'\n"
+        f"youngs_modulus = 1.0\npoisson_ratio = 0.3\n[adhesion]\n{adhesion}\n"
+    )
+    r = _run("compare", str(scene), "--quick", "--resolution", "16")
+    assert r.exit_code == 0, r.output
+    assert "bem_energy" in r.output and "FAIL" not in r.output
