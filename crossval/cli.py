@@ -5,8 +5,10 @@ from __future__ import annotations
 import dataclasses
 import logging
 import sys
+import tempfile
 import time
 from functools import wraps
+from pathlib import Path
 
 import click
 
@@ -367,6 +369,19 @@ def _compare_quick(sc) -> dict:
     }
 
 
+def _check_out_dir(out_dir: str) -> None:
+    """Refuse, before any solve, an output directory that cannot be made or written."""
+    if not out_dir:
+        raise SceneError("--out", "must name a directory (got an empty path)")
+    path = Path(out_dir)
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+        with tempfile.NamedTemporaryFile(dir=path):
+            pass
+    except OSError as exc:
+        raise SceneError("--out", f"cannot write into {out_dir!r}: {exc.strerror or exc}") from None
+
+
 @main.command("report")
 @click.option("--quick", is_flag=True, help="Coarse resolutions: under 3 minutes on 2 cores.")
 @click.option(
@@ -382,6 +397,7 @@ def _compare_quick(sc) -> dict:
 )
 @click.option("--scheduler", default=None, help="dask.distributed scheduler address (instead of local processes).")
 @click.option("--no-cache", is_flag=True, help="Recompute everything (results are cached in .crossval-cache).")
+@_scene_errors_exit_2
 def report_cmd(quick, out_dir, workers, scheduler, no_cache):
     """Run the built-in suite through every method and write OUT/index.html, results.json and plots.
 
@@ -393,6 +409,7 @@ def report_cmd(quick, out_dir, workers, scheduler, no_cache):
     from .report import report, report_jobs
     from .runner import default_workers
 
+    _check_out_dir(out_dir)
     bar, cb = _progress(len(report_jobs(SUITE, quick=quick)), "report")
     with bar, logging_redirect_tqdm():
         rep = report(
@@ -419,7 +436,9 @@ def report_cmd(quick, out_dir, workers, scheduler, no_cache):
 
 @main.command("regress")
 @click.option("--update", is_flag=True, help="Rewrite the stored reference file with the current results.")
-@click.option("--workers", type=int, default=None, help="Local processes (default: the machine's cores).")
+@click.option(
+    "--workers", type=click.IntRange(min=1), default=None, help="Local processes (default: the machine's cores)."
+)
 def regress_cmd(update, workers):
     """Compare results with the reference file stored in the package (exit 1 on a mismatch)."""
     from .regress import REFERENCE_FILE, regress

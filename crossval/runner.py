@@ -64,7 +64,14 @@ def run_jobs(
     if scheduler is not None:
         from distributed import Client, as_completed
 
-        client = scheduler if isinstance(scheduler, Client) else Client(scheduler)
+        client: Client
+        if isinstance(scheduler, Client):
+            client = scheduler
+        else:
+            try:
+                client = Client(scheduler)
+            except (OSError, ValueError, TypeError) as exc:  # a malformed or unreachable address
+                raise cs.SceneError("--scheduler", f"cannot connect to {scheduler!r}: {exc}") from None
         try:
             futs = {client.submit(_run, jobs[i], pure=False): i for i in todo}
             for f in as_completed(futs):

@@ -122,3 +122,16 @@ def test_compare_quick_takes_a_finite_range_or_no_adhesion(tmp_path, adhesion):
     r = _run("compare", str(scene), "--quick", "--resolution", "16")
     assert r.exit_code == 0, r.output
     assert "bem_energy" in r.output and "FAIL" not in r.output
+
+
+def test_report_and_regress_refuse_bad_options_by_name_before_solving(tmp_path, monkeypatch):
+    # an unusable --out ended in a NotADirectoryError traceback after the solves, and a
+    # malformed --scheduler in a ValueError traceback, both with the status of a failed check
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "file").write_text("")
+    for out in ("file/report", ""):
+        r = _run("report", "--quick", "--out", out)
+        assert r.exit_code == 2 and "--out" in r.output, r.output
+    r = _run("report", "--quick", "--no-cache", "--out", "rep", "--scheduler", "notanaddress")
+    assert r.exit_code == 2 and "--scheduler" in r.output and "notanaddress" in r.output, r.output
+    assert _run("regress", "--workers", "-5").exit_code == 2
