@@ -491,7 +491,7 @@ def study_cmd(file, method_names, resolutions, quantity, workers, as_json):
         if why:
             raise SceneError("method", why)
     res = None
-    if resolutions:
+    if resolutions is not None:
         try:
             vals = tuple(float(v) for v in resolutions.split(","))
         except ValueError:

@@ -150,9 +150,15 @@ class Check:
         if not self.converged and self.quantity == "converged":
             return f"{self.method}: did not converge ({self.basis or 'see the result messages'})"
         if not self.converged:
+            # a pair's check names both results: say which ones did not converge, not only the value
+            who = (
+                "a result that did not converge"
+                if " vs " not in self.method
+                else "a pair with a result that did not converge"
+            )
             return (
-                f"{self.method}: {self.quantity} = {self.value:.6g} comes from a result that did not converge, "
-                "so it fails whatever its value"
+                f"{self.method}: {self.quantity} = {self.value:.6g} against {self.reference_name} "
+                f"{self.reference:.6g} comes from {who}, so it fails whatever its value"
             )
         if self.role == "calibration":
             return (

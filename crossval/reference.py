@@ -131,6 +131,8 @@ def reference(scene_or_name, *, resolution: float = 64) -> Reference:
         raise cs.SceneError(
             "scene", f"must be a Scene, a built-in scene's name or a scene file's path (got {scene_or_name!r})"
         )
+    # checked whether or not a grid solve reads it: a bad value is refused, not ignored
+    cs.errors.check_real("resolution", resolution, lo=0, lo_open=True)
     if isinstance(scene_or_name, cs.Scene):
         scene = scene_or_name
     else:

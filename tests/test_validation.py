@@ -460,6 +460,9 @@ _KENDALL = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.A
         (lambda: crossval.compare(_KENDALL, methods=5), "methods"),
         (lambda: crossval.compare(_KENDALL, methods={"bem_griffith"}), "methods"),
         (lambda: crossval.reference(5), "scene"),
+        # a resolution the table's or the FEM's reference does not read is still refused, not ignored
+        (lambda: crossval.reference("square", resolution=-5), "resolution"),
+        (lambda: crossval.reference("kendall_circle", resolution="abc"), "resolution"),
         # the pull ends at its limit: a turning point beyond it is never reached
         (lambda: cs.Loading(turning_points=(-0.5, -3.0), pull_limit=-1.0), "loading.turning_points"),
         # turning points are an ordered list, not the keys of a mapping
