@@ -390,7 +390,8 @@ def _check_out_dir(out_dir: str) -> None:
     default="report",
     show_default=True,
     type=click.Path(file_okay=False),
-    help="Directory for index.html, results.json and the PNGs.",
+    help="Directory for index.html, results.json and the PNGs (made if missing; files of those names "
+    "are replaced, other files left as they are).",
 )
 @click.option(
     "--workers", type=click.IntRange(min=1), default=None, help="Local processes (default: the machine's cores)."
