@@ -17,6 +17,7 @@ from typing import TypedDict
 import numpy as np
 
 from contact_scene import Curve, Result, Scene, SceneError
+from contact_scene.result import unrecorded_snapshots
 
 from .continuation import LoadingPath, pull, snapshot
 from .equilibria import Equilibria
@@ -116,7 +117,8 @@ def pull_off(
         a change of the step count does: by 2e-6 and 9e-6 of it with one and two snapshots on
         a Kendall circle of 16 elements per radius); ``last_stable`` (the attached state before
         the snap-off); ``iterations`` and ``residual`` (the worst scaled projected gradient);
-        ``timings``; ``messages``; ``info`` (:class:`bem_energy.EnergyInfo`); ``stats``;
+        ``timings``; ``messages`` (among them the requested snapshot approaches the pull did
+        not reach, and why); ``info`` (:class:`bem_energy.EnergyInfo`); ``stats``;
         ``face_area`` (the rasterised face); ``discretisation = "grid"``; ``error_bars``.
         ``accuracy_estimate`` is not set.
 
@@ -189,6 +191,26 @@ def pull_off(
     msgs = list(outcome.messages)
     if outcome.attached and scene.loading.pull_limit is not None:
         msgs.append(f"still attached at the pull limit d = {scene.loading.pull_limit:g} (strong adhesion)")
+    if scene.outputs.snapshots:
+        if outcome.stopped:
+            end = f"where the pull stopped after {outcome.steps} steps"
+        elif not outcome.attached:
+            end = "where the punch detached"
+        elif scene.loading.pull_limit is not None:
+            end = "the pull limit"
+        else:
+            end = "where the pull ended"
+        missed = unrecorded_snapshots(
+            scene.outputs.snapshots,
+            [s.approach for s in outcome.snapshots],
+            start=float(d0),
+            highest=max(path.approach),
+            lowest=min(path.approach),
+            end=end,
+            method="bem_energy",
+        )
+        if missed is not None:
+            msgs.append(missed)
     resolved = True
     if potential is not None:
         note = unresolved_process_zone(scene, prob, potential)

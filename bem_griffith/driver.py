@@ -292,7 +292,6 @@ def pull(
     limit stops it; every curve point and snapshot goes to ``recorder``."""
     targets, reached_user_limit = pull_targets(scene, pressed_approach, problem)
     outcome = PullOutcome(final=pressed, reached_user_limit=reached_user_limit)
-    cell = problem.cell_area
     max_events = 20 * problem.face_elements + 1000
     solution, approach = pressed, pressed_approach
     rule = detachment_rule(problem, scene, settings)
@@ -317,13 +316,8 @@ def pull(
             )
             if solution is not before:
                 if not solution.attached:
-                    outcome.last_stable = Snapshot(
-                        float(approach),
-                        before.force(approach, cell),
-                        before.contact.copy(),
-                        problem.spacing,
-                        problem.origin,
-                    )
+                    # with the fields when the scene asks for them (Outputs.fields: "at pull-off")
+                    outcome.last_stable = recorder.snapshot(approach, before)
                     outcome.detachment_approach = approach
                 recorder.point(approach, solution)
             elif settings.driver == "fixed_step":

@@ -50,26 +50,28 @@ class PullRecorder:
         """Snapshots at the wanted approaches in [start, end] (either order) not yet taken,
         all of the contact set ``solution`` holds across that interval."""
         low, high = min(start, end), max(start, end)
-        problem = self.problem
         for approach in [a for a in self._wanted if low <= a <= high and a not in self._taken]:
             self._taken.add(approach)
-            pressure = displacement = None
-            if self.fields:
-                pressure = np.zeros(problem.face.shape)
-                pressure[solution.contact] = solution.pressure(approach)
-                displacement = solution.displacement(approach)
-            force = solution.force(approach, problem.cell_area) if solution.attached else 0.0
-            self.snapshots.append(
-                Snapshot(
-                    float(approach),
-                    force,
-                    solution.contact.copy(),
-                    problem.spacing,
-                    problem.origin,
-                    pressure,
-                    displacement,
-                )
-            )
+            self.snapshots.append(self.snapshot(approach, solution))
+
+    def snapshot(self, approach: float, solution: ContactSolution) -> Snapshot:
+        """The state ``solution`` at ``approach``, with its fields when the scene asks for them."""
+        problem = self.problem
+        pressure = displacement = None
+        if self.fields:
+            pressure = np.zeros(problem.face.shape)
+            pressure[solution.contact] = solution.pressure(approach)
+            displacement = solution.displacement(approach)
+        force = solution.force(approach, problem.cell_area) if solution.attached else 0.0
+        return Snapshot(
+            float(approach),
+            force,
+            solution.contact.copy(),
+            problem.spacing,
+            problem.origin,
+            pressure,
+            displacement,
+        )
 
     def curve(self) -> Curve:
         return Curve(np.array(self.approach), np.array(self.force), np.array(self.contact_area))

@@ -9,6 +9,7 @@ from typing import Literal, TypedDict
 import numpy as np
 
 from contact_scene import PowerLawGraded, Result, Scene
+from contact_scene.result import unrecorded_snapshots, zero_range_note
 
 from .counters import WorkCounters
 from .criterion import calibration
@@ -126,6 +127,29 @@ def assemble_result(
         messages.append("the punch did not detach within the default pull range")
     if not detached and outcome.reached_user_limit:
         messages.append(f"still attached at the pull limit d = {scene.loading.pull_limit:g} (strong adhesion)")
+    if scene.outputs.snapshots:
+        if detached:
+            end = "where the punch detached"
+        elif outcome.aborted:
+            end = f"where the pull stopped after {outcome.events} events"
+        elif outcome.reached_user_limit:
+            end = "the pull limit"
+        else:
+            end = "the end of the default pull range"
+        missed = unrecorded_snapshots(
+            scene.outputs.snapshots,
+            [s.approach for s in recorder.snapshots],
+            start=pressed_approach,
+            highest=float(curve.approach.max()),
+            lowest=float(curve.approach.min()),
+            end=end,
+            method="bem_griffith",
+        )
+        if missed is not None:
+            messages.append(missed)
+    range_message = zero_range_note(scene, "bem_griffith")
+    if range_message is not None:
+        messages.append(range_message)
     graded_info, graded_message = graded_criterion_note(scene, settings)
     if graded_message is not None:
         messages.append(graded_message)

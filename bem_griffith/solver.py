@@ -66,9 +66,12 @@ def solve(scene: Scene, settings: GriffithSettings | None = None, *, callback=No
         pressed contact with its contact set held fixed); ``converged`` (False, with a message,
         when a contact solve missed its tolerance, a detachment cascade did not settle or the
         pull was aborted); ``grid_spacing``; ``curve`` (when the scene's outputs ask for it);
-        ``detached`` and ``detachment_approach``; ``snapshots`` at the requested approaches;
-        ``last_stable``; ``iterations`` (conjugate-gradient iterations) and ``residual`` (the
-        worst relative residual); ``timings`` (setup, press, pull); ``messages``; ``info``
+        ``detached`` and ``detachment_approach``; ``snapshots`` at the requested approaches the
+        pull passes; ``last_stable`` (with its fields when the scene asks for them);
+        ``iterations`` (conjugate-gradient iterations) and ``residual`` (the worst relative
+        residual); ``timings`` (setup, press, pull); ``messages`` (among them the requested
+        snapshot approaches the pull did not reach, and why, and for a scene with an adhesion
+        range that the range is ignored: the result is the zero-range limit); ``info``
         (:class:`bem_griffith.GriffithInfo`); ``stats``; ``face_area`` (the rasterised face);
         ``discretisation = "grid"``; ``error_bars`` from the method's error model.
         ``accuracy_estimate`` is not set.

@@ -6,11 +6,24 @@ import dataclasses
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-__all__ = ["Curve", "Snapshot", "Result", "SolverStats", "ErrorBar", "QUANTITIES", "JSON_KEYS"]
+if TYPE_CHECKING:
+    from .scene import Scene
+
+__all__ = [
+    "Curve",
+    "Snapshot",
+    "Result",
+    "SolverStats",
+    "ErrorBar",
+    "QUANTITIES",
+    "JSON_KEYS",
+    "unrecorded_snapshots",
+    "zero_range_note",
+]
 
 #: the scalar outputs every method computes, and that error bars and checks refer to
 QUANTITIES = ("pulloff_force", "pulloff_approach", "stiffness")
@@ -112,6 +125,133 @@ class Snapshot:
         return np.meshgrid(
             self.origin[0] + self.spacing * np.arange(nx), self.origin[1] + self.spacing * np.arange(ny), indexing="ij"
         )
+
+    def to_json(self) -> dict:
+        """The snapshot in plain JSON types: its scalars, and its contact map run-length encoded.
+
+        Returns
+        -------
+        dict
+            ``approach``, ``force``, ``contact_area`` and ``spacing`` (floats), ``origin``
+            ([x, y]); ``contact``, the mask in the run-length encoding of
+            :meth:`decode_contact` (exact, and short for a compact contact set); ``fields``,
+            None when the snapshot holds no fields, else a dict naming the arrays held
+            (``pressure``, ``displacement``) that the JSON leaves out and where to read them:
+            ``Snapshot.pressure`` and ``Snapshot.displacement`` of the Result the method's
+            ``solve`` returns in Python.
+        """
+        held = [name for name in ("pressure", "displacement") if getattr(self, name) is not None]
+        return {
+            "approach": float(self.approach),
+            "force": float(self.force),
+            "contact_area": self.contact_area,
+            "spacing": float(self.spacing),
+            "origin": [float(self.origin[0]), float(self.origin[1])],
+            "contact": _encode_mask(self.contact),
+            "fields": None
+            if not held
+            else {
+                "left_out": held,
+                "shape": list(self.contact.shape),
+                "how_to_get": "not written to JSON (one float per element each): read "
+                + " and ".join(f"Snapshot.{name}" for name in held)
+                + " from the Result the method's solve() returns in Python",
+            },
+        }
+
+    @staticmethod
+    def decode_contact(encoded: Mapping[str, Any]) -> np.ndarray:
+        """The boolean contact mask from its run-length encoding in :meth:`to_json`.
+
+        The encoding: ``shape`` [nx, ny]; ``runs``, the lengths of alternating runs of elements
+        out of and in contact along the mask flattened with iy fastest (index [ix, iy]), the
+        first run out of contact (of length 0 when element [0, 0] is in contact).
+
+        Parameters
+        ----------
+        encoded : Mapping
+            The ``contact`` entry of :meth:`to_json`'s dict.
+
+        Returns
+        -------
+        numpy.ndarray
+            The mask, of shape ``encoded["shape"]``, indexed [ix, iy].
+
+        Raises
+        ------
+        ValueError
+            If the runs do not cover the shape's elements exactly.
+        """
+        shape = tuple(int(n) for n in encoded["shape"])
+        runs = np.asarray(encoded["runs"], dtype=np.int64)
+        if runs.sum() != math.prod(shape):
+            raise ValueError(f"the runs cover {runs.sum()} elements, not the {math.prod(shape)} of shape {shape}")
+        values = np.arange(len(runs)) % 2 == 1
+        return np.repeat(values, runs).reshape(shape)
+
+
+def _encode_mask(mask: np.ndarray) -> dict:
+    """Run-length encoding of a boolean mask (see :meth:`Snapshot.decode_contact`)."""
+    flat = np.asarray(mask, bool).ravel()
+    # the indices where the value changes, with the ends; the first run is out of contact
+    edges = np.flatnonzero(np.diff(flat.astype(np.int8))) + 1
+    bounds = np.concatenate(([0], edges, [flat.size]))
+    runs = np.diff(bounds).tolist()
+    if flat.size and flat[0]:
+        runs = [0, *runs]
+    return {
+        "encoding": "run-length: alternating runs out of and in contact (the first out), iy fastest",
+        "shape": list(mask.shape),
+        "elements": int(np.count_nonzero(flat)),
+        "runs": runs,
+    }
+
+
+def unrecorded_snapshots(
+    wanted, recorded, *, start: float, highest: float, lowest: float, end: str, method: str
+) -> str | None:
+    """The message naming the snapshot approaches a pull asked for but did not record, and why.
+
+    Parameters
+    ----------
+    wanted : iterable of float
+        The approaches the scene asks for (``Outputs.snapshots``).
+    recorded : iterable of float
+        The approaches of the snapshots the method recorded.
+    start : float
+        The approach the pull starts from (the pressed state).
+    highest, lowest : float
+        The highest and lowest approach the loading path (turning points included) reached.
+    end : str
+        What ended the path at ``lowest``, completing "below d = <lowest>, ...": "where the
+        punch detached", "the pull limit", "where the pull stopped after 1000 events".
+    method : str
+        The method's name, for the message.
+
+    Returns
+    -------
+    str or None
+        One message listing each approach not recorded with its reason; None when every
+        approach asked for was recorded.
+    """
+    done = {float(a) for a in recorded}
+    missed = sorted({float(a) for a in wanted} - done, reverse=True)
+    if not missed:
+        return None
+    reasons = []
+    for a in missed:
+        if a > highest:
+            where = (
+                "where the pull starts (after the press; snapshots are taken while pulling)"
+                if highest == start
+                else "the highest approach the loading path reaches"
+            )
+            reasons.append(f"d = {a:g} lies above d = {highest:g}, {where}")
+        elif a < lowest:
+            reasons.append(f"d = {a:g} lies below d = {lowest:g}, {end}")
+        else:
+            reasons.append(f"d = {a:g} lies on the path (d = {lowest:g} to {highest:g}) but was not recorded")
+    return f"{method} recorded no snapshot at {len(missed)} of the approaches asked for: " + "; ".join(reasons)
 
 
 @dataclass(frozen=True)
@@ -234,7 +374,8 @@ class Result:
         The approach at which the punch came off; None when it did not, or where the method
         did not locate it.
     snapshots : tuple of Snapshot
-        The contact set at each approach of ``Outputs.snapshots`` that the loading path passed.
+        The contact set at each approach of ``Outputs.snapshots`` that the loading path passed;
+        ``messages`` names those it did not, and why.
     last_stable : Snapshot or None
         The last attached state before detachment, where the method records it.
     iterations : int
@@ -315,13 +456,23 @@ class Result:
         return float(sum(self.timings.values()))
 
     def to_json(self) -> dict:
-        """The fixed JSON keys of ``crossval solve`` (plus a few optional extras).
+        """The result in plain JSON types (lists, floats, None), as ``crossval solve --json`` prints it.
+
+        Every field of the Result is there, and the arrays it holds are either written out or
+        named, with where to read them, under ``left_out``.
 
         Returns
         -------
         dict
-            The keys of :data:`JSON_KEYS` and every other field, in plain JSON types (lists,
-            floats, None); ``curve`` is None or a dict of its three lists.
+            The keys of :data:`JSON_KEYS` (``curve`` None or a dict of its three lists); then
+            ``detached``, ``detachment_approach``, ``iterations``, ``residual``, ``timings``,
+            ``accuracy_estimate``, ``messages``, ``info``, ``stats``, ``error_bars``,
+            ``face_area`` and ``discretisation`` as they are; ``snapshots`` (a list) and
+            ``last_stable`` (None or one), each snapshot as :meth:`Snapshot.to_json` gives it
+            (approach, force, contact area, spacing, origin and the contact map run-length
+            encoded; its pressure and displacement fields named but not written out); and
+            ``left_out``, a list of what the JSON omits and how to get it (empty when nothing
+            is omitted).
         """
         out = {
             "method": self.method,
@@ -350,5 +501,45 @@ class Result:
             "error_bars": {q: dataclasses.asdict(b) for q, b in self.error_bars.items()},
             "face_area": self.face_area,
             "discretisation": self.discretisation,
+            "snapshots": [s.to_json() for s in self.snapshots],
+            "last_stable": None if self.last_stable is None else self.last_stable.to_json(),
         }
+        held = [s for s in (*self.snapshots, self.last_stable) if s is not None]
+        fields = [name for name in ("pressure", "displacement") if any(getattr(s, name) is not None for s in held)]
+        out["left_out"] = (
+            [
+                f"the {' and '.join(fields)} fields of the snapshots and last_stable (one float per "
+                "element of each snapshot's grid, indexed [ix, iy]): read "
+                + " and ".join(f"Result.snapshots[i].{name}" for name in fields)
+                + " (and last_stable's) from the Result the method's solve() returns in Python"
+            ]
+            if fields
+            else []
+        )
         return out
+
+
+def zero_range_note(scene: Scene, method: str) -> str | None:
+    """The message of a zero-range method given a scene with a finite adhesion range.
+
+    Parameters
+    ----------
+    scene : contact_scene.Scene
+        The scene solved.
+    method : str
+        The method's name, for the message.
+
+    Returns
+    -------
+    str or None
+        That the range (named) is ignored and the result is the zero-range (Griffith /
+        JKR-type) limit; None when the scene has no range.
+    """
+    adhesion = scene.adhesion
+    if adhesion.range is None:
+        return None
+    return (
+        f"adhesion range rho = {adhesion.range:g} ({adhesion.potential} potential) ignored: {method} models "
+        "the zero-range (Griffith / JKR-type) limit, and this result is that limit, not the finite range's "
+        "pull-off; bem_energy solves the finite range"
+    )

@@ -30,6 +30,7 @@ from skfem import MeshTri
 
 from contact_scene import Circle, Curve, ErrorBar, Homogeneous, PowerLawGraded, Result, Scene, SceneError, SolverStats
 from contact_scene.errors import check_type
+from contact_scene.result import zero_range_note
 from contact_scene.validation import check_fields, choice, flag, real, whole
 
 from .model import (
@@ -461,7 +462,10 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
         F = K abs(limit), with the stiffness's bar on both); ``converged`` False, with a message,
         when the saddle-point solve did not reach its tolerance or dK/da is not positive (no
         Griffith point: F_A = d_c = 0 stand in, with no pull-off bars).  Fields, when the scene
-        asks for them, are those of the pull-off state.
+        asks for them, are those of the pull-off state, written to ``fields_path`` (which
+        ``info["fields_path"]`` names).  No snapshots are recorded: a message names the
+        approaches asked for.  An adhesion range is ignored: the result is the zero-range
+        (Griffith) limit, and a message says so.
 
     Raises
     ------
@@ -536,7 +540,15 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
         # at the pull-off state: d_c, or the pull limit where the punch is still attached
         write_fields(settings.fields_path, u, radius=a, approach=end, modulus_scale=modulus_scale)
     if scene.outputs.snapshots:
-        msgs.append("fem_reference records no snapshots (it solves the pull-off state only)")
+        wanted = sorted(set(scene.outputs.snapshots), reverse=True)
+        msgs.append(
+            f"fem_reference recorded no snapshot at {len(wanted)} of the approaches asked for: "
+            + ", ".join(f"d = {x:g}" for x in wanted)
+            + " (it records no snapshots: it solves the pull-off state only)"
+        )
+    range_message = zero_range_note(scene, "fem_reference")
+    if range_message is not None:
+        msgs.append(range_message)
     if callback is not None:
         callback(end, -F_end, math.pi * a * a)
     log.info(
@@ -589,6 +601,8 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
             # and the reaction equals the energy form; diagnostics, not error bounds
             "scaling_defect": abs(u.dK_vce / ((1 + mat.k) * u.stiffness) - 1),
             "reaction_defect": abs(u.stiffness_reaction / u.stiffness - 1),
+            # where the fields the scene asked for went (Result holds no mesh fields)
+            **({"fields_path": settings.fields_path} if scene.outputs.fields else {}),
         },
     )
 

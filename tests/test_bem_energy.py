@@ -407,3 +407,17 @@ def test_a_process_zone_that_underflows_is_reported_not_divided_by():
     r = be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=8)))
     assert not r.converged
     assert any("underflows" in m for m in r.messages)
+
+
+@pytest.mark.parametrize(
+    "wanted, missed", [((5.0,), "d = 5 lies above d = 0, where the pull starts"), ((-100.0,), "d = -100 lies below")]
+)
+def test_snapshots_the_pull_does_not_reach_are_named(wanted, missed):
+    """A snapshot beyond the snap-off or above the pull's start was once dropped silently."""
+    sc = circle(range_=rho_for(0.3), outputs=cs.Outputs(snapshots=(-0.05, *wanted)))
+    r = be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=8), minimiser="pk"))
+    assert [s.approach for s in r.snapshots] == [-0.05]
+    notes = [m for m in r.messages if m.startswith("bem_energy recorded no snapshot at 1 of")]
+    assert len(notes) == 1 and missed in notes[0], r.messages
+    if wanted[0] < 0:
+        assert "where the punch detached" in notes[0] and f"{r.detachment_approach:g}" in notes[0]

@@ -551,3 +551,52 @@ def test_a_pull_still_attached_at_its_limit_claims_no_pulloff_bar():
     assert not held.detached and any("pull limit" in m for m in held.messages)
     assert set(held.error_bars) == {"stiffness"}
     assert {"pulloff_force", "pulloff_approach"} <= set(run(circle_scene(), 16).error_bars)
+
+
+@pytest.mark.parametrize(
+    "wanted, loading, missed",
+    [
+        ((5.0,), cs.Loading(), "d = 5 lies above d = 0, where the pull starts"),
+        ((-100.0,), cs.Loading(), "d = -100 lies below d = {detached:g}, where the punch detached"),
+        ((-1.0, -2.0), cs.Loading(pull_limit=-1.5), "d = -2 lies below d = -1.5, the pull limit"),
+    ],
+)
+def test_snapshots_the_pull_does_not_reach_are_named(wanted, loading, missed):
+    """A snapshot beyond the detachment, above the pull's start or past the pull limit was
+    once dropped without a word (Kendall's circle detaches near d_c = -2.5 here)."""
+    r = run(circle_scene(loading=loading, outputs=cs.Outputs(snapshots=wanted)), 8)
+    notes = [m for m in r.messages if m.startswith("bem_griffith recorded no snapshot")]
+    assert len(notes) == 1 and missed.format(detached=r.detachment_approach) in notes[0], r.messages
+    assert [s.approach for s in r.snapshots] == ([-1.0] if loading.pull_limit is not None else [])
+    assert not any(
+        "recorded no snapshot" in m for m in run(circle_scene(outputs=cs.Outputs(snapshots=(-1.0,))), 8).messages
+    )
+
+
+def test_a_finite_range_is_named_as_ignored():
+    """The Griffith BEM is the zero-range limit: a scene's range was once ignored silently."""
+    sc = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0, 0.3))
+    r = run(sc, 8)
+    notes = [m for m in r.messages if "range rho = 0.3" in m]
+    assert len(notes) == 1 and "ignored" in notes[0] and "zero-range" in notes[0]
+    plain = run(circle_scene(), 8)
+    assert plain.pulloff_force == r.pulloff_force and not any("range rho" in m for m in plain.messages)
+
+
+def test_json_carries_snapshots_and_last_stable():
+    """``to_json`` (``crossval solve --json``) once had no snapshots, no last_stable and no word
+    of the fields the scene asked for; the last stable state now carries fields too."""
+    import json
+
+    from crossval.jsonio import dumps
+
+    r = run(circle_scene(outputs=cs.Outputs(snapshots=(-1.0, -2.0), fields=True)), 8)
+    assert r.last_stable is not None and r.last_stable.pressure is not None
+    assert np.allclose(r.last_stable.displacement[r.last_stable.contact], r.last_stable.approach, rtol=1e-8)
+    out = json.loads(dumps(r.to_json()))
+    assert [s["approach"] for s in out["snapshots"]] == [-1.0, -2.0]
+    for s, got in zip((*r.snapshots, r.last_stable), (*out["snapshots"], out["last_stable"]), strict=True):
+        assert (got["force"], got["contact_area"]) == (s.force, s.contact_area)
+        assert np.array_equal(cs.Snapshot.decode_contact(got["contact"]), s.contact)
+        assert got["fields"]["left_out"] == ["pressure", "displacement"]
+    assert any("pressure" in x and "displacement" in x for x in out["left_out"])

@@ -458,3 +458,19 @@ def test_graded_near_one_meets_the_target_at_the_default_grading(k):
     assert r.converged and max(err.values()) < 1e-5
     for q in QUANTITIES:
         assert err[q] <= est[q], (q, err[q], est[q])
+
+
+def test_snapshots_and_a_range_are_named_as_not_done():
+    """The FEM solves the pull-off state of the zero-range limit: the snapshot approaches asked
+    for are named, and a range once ignored silently is named as ignored."""
+    mat = homogeneous(0.3)
+    sc = dataclasses.replace(
+        scene(mat), adhesion=cs.Adhesion(1.0, 0.3), outputs=cs.Outputs(snapshots=(-1.0, -2.0, -1.0))
+    )
+    r = fr.solve(sc, fr.FemSettings(grading=2, order=2))
+    notes = [m for m in r.messages if m.startswith("fem_reference recorded no snapshot at 2 of")]
+    assert len(notes) == 1 and "d = -1, d = -2" in notes[0], r.messages
+    notes = [m for m in r.messages if "range rho = 0.3" in m]
+    assert len(notes) == 1 and "ignored" in notes[0] and "zero-range" in notes[0]
+    plain = fr.solve(scene(mat), fr.FemSettings(grading=2, order=2))
+    assert plain.pulloff_force == r.pulloff_force and not any("range" in m for m in plain.messages)
