@@ -13,7 +13,7 @@ Schema (every key is checked; unknown keys are errors)::
     model = "homogeneous"              # youngs_modulus, poisson_ratio
     # model = "power_law_graded"       # surface_modulus, reference_depth, exponent
     [adhesion]
-    work_of_adhesion = 1.0             # range, potential: energy method only
+    work_of_adhesion = 1.0             # range, potential (only with range): energy method only
     [loading]                          # optional: press_approach | press_force, turning_points, pull_limit
     [outputs]                          # optional: curve, snapshots, fields
 
@@ -34,6 +34,7 @@ from .errors import SceneError, check_real
 from .materials import Homogeneous, PowerLawGraded
 from .profiles import Cone, Flat, Paraboloid, Sphere
 from .scene import Adhesion, Indenter, Loading, Outputs, Scene
+from .shapes.brush import LAYOUT_PARAMETERS, LAYOUTS as BRUSH_LAYOUTS, unused_by_layout
 
 __all__ = ["load_scene", "scene_from_dict", "shape_from_dict", "summarise", "SHAPE_KEYS"]
 
@@ -58,6 +59,14 @@ SHAPE_KEYS: dict[str, tuple[set, set]] = {
 _COMMON = {"shape", "rotation_deg", "mirror"}
 _PROFILE_KEYS = {"profile", "profile_radius", "half_angle_deg"}
 _NATIVE_ROTATION = {"ellipse", "square", "rectangle", "regular_polygon", "star", "power_law_star"}
+
+
+#: why ``adhesion.potential`` is refused without ``adhesion.range``
+POTENTIAL_NEEDS_RANGE = (
+    "names the form of a finite-range interaction and needs adhesion.range; without a range the "
+    "scene is the zero-range limit, which has no potential (the energy BEM's zero-range sequence "
+    "takes its potential from ZeroRangeSettings.potential)"
+)
 
 
 def _check_keys(section: str, d: dict, allowed: AbstractSet[str], required: AbstractSet[str] = frozenset()):
@@ -113,8 +122,9 @@ def shape_from_dict(d: dict, *, base_dir: Path | None = None, section: str = "in
     params = {k: d[k] for k in required | optional if k in d}
     if "center" in params:
         params["center"] = tuple(params["center"]) if isinstance(params["center"], list) else params["center"]
+    # checked whenever given: a falsy value ("", false, []) is as wrong as any other non-number
+    rotation = check_real(f"{section}.rotation_deg", d["rotation_deg"]) if "rotation_deg" in d else 0.0
     # shapes with a rotation parameter of their own take it and keep their closed forms; others are wrapped
-    rotation = d.get("rotation_deg", 0.0)
     if kind in _NATIVE_ROTATION and "rotation_deg" in d:
         params["rotation_deg"] = rotation
         rotation = 0.0
@@ -128,7 +138,7 @@ def shape_from_dict(d: dict, *, base_dir: Path | None = None, section: str = "in
     if mirror:
         shape = shape.mirrored()
     if rotation:
-        shape = shape.rotated(check_real(f"{section}.rotation_deg", rotation))
+        shape = shape.rotated(rotation)
     return shape
 
 
@@ -160,6 +170,14 @@ def _build(kind, params, base_dir, section):
     if kind == "square_with_faults":
         return shapes.SquareWithFaults(**params)
     if kind == "brush":
+        # a key the layout does not use is refused even at its default value: the file gave it,
+        # so its author expects it to act (the class alone cannot tell a default from a given one)
+        layout = params.get("layout", "regular")
+        if layout in BRUSH_LAYOUTS:  # (another layout is refused by the class, naming the layout)
+            for key in sorted(LAYOUT_PARAMETERS):
+                if key in params and layout not in LAYOUT_PARAMETERS[key]:
+                    message = unused_by_layout(key, layout, layout_given="layout" in params)
+                    raise SceneError(f"{section}.{key}", f"{message}; leave it out")
         return shapes.Brush(**params)
     if kind == "image":
         p = params.pop("path")
@@ -281,6 +299,9 @@ def scene_from_dict(d: dict, *, base_dir: Path | None = None) -> Scene:
     material = _material_from_dict(d["material"])
     adhesion_table = d["adhesion"]
     _check_keys("adhesion", adhesion_table, {"work_of_adhesion", "range", "potential"}, {"work_of_adhesion"})
+    if "potential" in adhesion_table and "range" not in adhesion_table:
+        # refused even when it names the default: the file gave it, and it would have no effect
+        raise SceneError("adhesion.potential", f"{POTENTIAL_NEEDS_RANGE}; give range too, or leave potential out")
     adhesion = Adhesion(
         adhesion_table["work_of_adhesion"], adhesion_table.get("range"), adhesion_table.get("potential", "exponential")
     )
@@ -313,7 +334,8 @@ def load_scene(path) -> Scene:
     Parameters
     ----------
     path : str or os.PathLike
-        The scene file; an image face's relative ``path`` is taken from its directory.
+        The scene file (UTF-8, with or without a byte-order mark); an image face's relative
+        ``path`` is taken from its directory.
 
     Returns
     -------
@@ -328,7 +350,12 @@ def load_scene(path) -> Scene:
     """
     path = Path(path)
     try:
-        text = path.read_bytes().decode("utf-8")
+        # "utf-8-sig" drops one leading byte-order mark and is UTF-8 otherwise.  A BOM is accepted
+        # rather than refused: it is an encoding signature, not part of the text (a TOML file is
+        # UTF-8 by definition, so it tells nothing), and some editors (older Windows Notepad)
+        # write one by default; refusing it would only make the user re-save an otherwise valid
+        # file.  (tomllib itself reports it as "Invalid statement (at line 1, column 1)".)
+        text = path.read_bytes().decode("utf-8-sig")
     except OSError as exc:
         raise SceneError("file", f"cannot read {str(path)!r}: {exc.strerror or exc}") from None
     except UnicodeDecodeError:

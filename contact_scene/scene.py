@@ -79,7 +79,9 @@ class Adhesion:
         must stay a floating-point number); None (the default) for the zero-range limit.
     potential : str, optional
         The finite-range potential's form (:class:`bem_energy.Potential`): ``"exponential"``
-        (the default) or ``"maugis_dugdale"``.
+        (the default) or ``"maugis_dugdale"``.  It shapes the interaction of the given
+        ``range`` and has none to shape without one (a scene file refuses ``potential``
+        without ``range``).
 
     Raises
     ------

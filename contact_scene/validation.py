@@ -13,10 +13,13 @@ for every class means one wording of every message, and a test can walk the decl
 A bound may be a number or a function of the object, for ranges that depend on a field declared
 earlier (``semi_minor: float = real(gt=0, le=lambda e: e.semi_major)``): fields are checked in
 declaration order, so the earlier one is already checked when the bound is read.  ``when`` makes
-a check conditional (a brush's ``pitch`` only matters for a regular layout); ``optional`` lets
-``None`` through unchanged (``None`` means "not given" for such fields).  Rules that are not a
-range of one field (two options that exclude each other, a value required by another) stay as
-explicit code in the class's ``__post_init__``.
+a check conditional (a brush's ``pitch`` only matters for a regular layout); with ``unused``, a
+value other than the field's default is refused while ``when`` is false, with that message, so
+that a parameter the object does not use is not accepted and then ignored (the default itself
+passes: a regular brush is built without a count).  ``optional`` lets ``None`` through unchanged
+(``None`` means "not given" for such fields).  Rules that are not a range of one field (two
+options that exclude each other, a value required by another) stay as explicit code in the
+class's ``__post_init__``.
 """
 
 from __future__ import annotations
@@ -63,6 +66,10 @@ class FieldCheck:
         profile's ``radius``).
     when
         Check only when this function of the object is true.
+    unused
+        With ``when``: while ``when`` is false, a value other than the field's default is
+        refused with this message (or the message this function of the object returns), e.g.
+        "only applies to layout 'regular'".  Without it such a value is left unchecked.
     optional
         ``None`` is a valid value ("not given") and is stored as is.
     """
@@ -76,6 +83,7 @@ class FieldCheck:
     name: str | None = None
     when: Callable[[Any], bool] | None = None
     optional: bool = False
+    unused: str | Callable[[Any], str] | None = None
 
     def bounds(self, obj) -> tuple[float | None, bool, float | None, bool]:
         """(lower, lower is open, upper, upper is open) evaluated on ``obj``; None: unbounded."""
@@ -109,6 +117,8 @@ class FieldCheck:
 def _declare(check: FieldCheck, default, factory) -> Any:
     if (check.gt is not None and check.ge is not None) or (check.lt is not None and check.le is not None):
         raise TypeError("give one lower bound (gt or ge) and one upper bound (lt or le)")
+    if check.unused is not None and check.when is None:
+        raise TypeError("unused says why a value is refused while `when` is false: give when too")
     if factory is not MISSING:
         return dataclasses.field(default_factory=factory, metadata={_KEY: check})
     return dataclasses.field(default=default, metadata={_KEY: check})
@@ -124,10 +134,13 @@ def real(
     name: str | None = None,
     when: Callable[[Any], bool] | None = None,
     optional: bool = False,
+    unused: str | Callable[[Any], str] | None = None,
 ) -> Any:
     """A finite real number, optionally bounded (``gt``/``lt`` exclusive, ``ge``/``le`` inclusive),
     stored as a float."""
-    return _declare(FieldCheck("real", gt, ge, lt, le, name=name, when=when, optional=optional), default, MISSING)
+    return _declare(
+        FieldCheck("real", gt, ge, lt, le, name=name, when=when, optional=optional, unused=unused), default, MISSING
+    )
 
 
 def whole(
@@ -138,9 +151,10 @@ def whole(
     name: str | None = None,
     when: Callable[[Any], bool] | None = None,
     factory: Callable[[], int] | Any = MISSING,
+    unused: str | Callable[[Any], str] | None = None,
 ) -> Any:
     """A whole number in [ge, le], stored as an int; ``factory`` computes the default at construction."""
-    return _declare(FieldCheck("whole", ge=ge, le=le, name=name, when=when), default, factory)
+    return _declare(FieldCheck("whole", ge=ge, le=le, name=name, when=when, unused=unused), default, factory)
 
 
 def point(default=(0.0, 0.0), *, name: str | None = None) -> Any:
@@ -194,11 +208,34 @@ def field_name(prefix: str, attribute: str, check: FieldCheck) -> str:
     return check.name or f"{prefix}.{attribute}"
 
 
+def _is_default(f: dataclasses.Field, value) -> bool:
+    """Whether ``value`` is the field's default (of the same type: False is not a default 0)."""
+    if f.default is not MISSING:
+        default = f.default
+    elif f.default_factory is not MISSING:
+        default = f.default_factory()
+    else:
+        return False
+    if value is default:
+        return True
+    try:
+        return type(value) is type(default) and bool(value == default)
+    except Exception:  # an array or another object without a plain truth value
+        return False
+
+
 def check_fields(obj, prefix: str) -> None:
     """Check every declared field of the frozen dataclass ``obj`` in declaration order and store the
-    checked value; an error names ``<prefix>.<field>`` (or the field's declared ``name``)."""
+    checked value; an error names ``<prefix>.<field>`` (or the field's declared ``name``).  A
+    field whose ``when`` is false is not checked, and, if it declares ``unused``, refused unless
+    it holds its default."""
+    fields = {f.name: f for f in dataclasses.fields(obj)}
     for attribute, check in declared_fields(obj):
         if check.when is not None and not check.when(obj):
+            value = getattr(obj, attribute)
+            if check.unused is not None and not _is_default(fields[attribute], value):
+                why = check.unused(obj) if callable(check.unused) else check.unused
+                raise SceneError(field_name(prefix, attribute, check), f"{why} (got {value!r})")
             continue
         value = check.check(obj, field_name(prefix, attribute, check), getattr(obj, attribute))
         object.__setattr__(obj, attribute, value)

@@ -139,7 +139,8 @@ def _print_version(ctx, param, value):
 def main(verbose):
     """Adhesive punch detachment: solve scenes and cross-check methods against theory.
 
-    A scene FILE is a TOML scene file or the name of a built-in scene (crossval scene list)."""
+    A scene FILE is a TOML scene file or the name of a built-in scene (crossval scene list); a
+    built-in name always means the built-in scene, so write ./NAME for a file of that name."""
     handler = logging.StreamHandler(sys.stderr)
     handler.setFormatter(logging.Formatter("%(levelname)s %(name)s: %(message)s"))
     level = [logging.WARNING, logging.INFO, logging.DEBUG][min(verbose, 2)]
@@ -169,7 +170,7 @@ def scene_list():
 
 
 @scene.command("check")
-@click.argument("file", type=click.Path(dir_okay=False))
+@click.argument("file", type=click.Path())
 @click.option("--json", "as_json", is_flag=True, help="Print the summary as JSON.")
 @_scene_errors_exit_2
 def scene_check(file, as_json):
@@ -184,7 +185,7 @@ def scene_check(file, as_json):
 
 
 @main.command("solve")
-@click.argument("file", type=click.Path(dir_okay=False))
+@click.argument("file", type=click.Path())
 @click.option("--method", "method_name", required=True, type=click.Choice(sorted(METHODS)), help="Which solver.")
 @click.option(
     "--resolution",
@@ -256,7 +257,7 @@ def _print_result(res) -> None:
 
 
 @main.command("compare")
-@click.argument("file", type=click.Path(dir_okay=False))
+@click.argument("file", type=click.Path())
 @click.option("--resolution", type=float, default=None, help="BEM elements across sqrt(A/pi) (default 32).")
 @click.option(
     "--quick",
@@ -457,7 +458,7 @@ def regress_cmd(update, workers):
 
 
 @main.command("study")
-@click.argument("file", type=click.Path(dir_okay=False))
+@click.argument("file", type=click.Path())
 @click.option(
     "--method",
     "method_names",

@@ -57,13 +57,38 @@ def scene(name: str) -> cs.Scene:
 
 
 def load_scene_or_builtin(file_or_name: str | Path) -> cs.Scene:
-    """A scene file's path, or the name of a built-in scene (``crossval scene list``)."""
+    """A built-in scene by name, or a scene file.
+
+    The rule does not depend on what the current directory holds: a string that is a built-in
+    scene's name (``crossval scene list``) is that scene, even when a file or directory of that
+    name exists (write ``./star`` for a file called ``star``); anything else, and any
+    :class:`os.PathLike`, is a scene file's path.
+
+    Parameters
+    ----------
+    file_or_name : str or pathlib.Path
+        A built-in scene's name, or a scene file's path.
+
+    Returns
+    -------
+    contact_scene.Scene
+        The built-in scene, or the scene read from the file.
+
+    Raises
+    ------
+    contact_scene.SceneError
+        With field ``file`` for a directory, for a name that is neither a file nor a built-in
+        scene (listing them), or when the file cannot be read; naming the offending field of a
+        bad scene file.
+    """
+    if isinstance(file_or_name, str) and file_or_name in BUILTIN:
+        return BUILTIN[file_or_name]
     path = Path(file_or_name)
-    if path.exists() or path.suffix == ".toml" or len(path.parts) > 1:
-        return cs.load_scene(path)
-    if str(file_or_name) in BUILTIN:
-        return BUILTIN[str(file_or_name)]
-    raise cs.SceneError(
-        "file",
-        f"no file {str(file_or_name)!r} and no built-in scene of that name; built-in scenes: {', '.join(BUILTIN)}",
-    )
+    if path.is_dir():
+        raise cs.SceneError("file", f"{str(file_or_name)!r} is a directory, not a scene file")
+    if not path.exists() and path.suffix != ".toml" and len(path.parts) == 1:
+        raise cs.SceneError(
+            "file",
+            f"no file {str(file_or_name)!r} and no built-in scene of that name; built-in scenes: {', '.join(BUILTIN)}",
+        )
+    return cs.load_scene(path)

@@ -59,6 +59,55 @@ def test_rotation_and_mirror():
     assert shape_from_dict({**star, "rotation_deg": 30.0}) == shapes.Star(5, 1.0, 0.45, rotation_deg=30.0)
 
 
+@pytest.mark.parametrize("value", ["", False, [], True, "30", [30.0], float("nan")])
+@pytest.mark.parametrize(
+    "table",
+    [
+        {"shape": "circle", "radius": 1.0},  # wrapped in a rotation
+        {"shape": "triangle", "side": 1.0},  # wrapped in a rotation
+        {"shape": "square", "side": 1.0},  # takes rotation_deg itself
+    ],
+    ids=lambda t: t["shape"],
+)
+def test_a_rotation_that_is_not_a_number_is_refused_even_when_falsy(table, value):
+    # "", false and [] used to pass as "no rotation" on a wrapped shape
+    with pytest.raises(cs.SceneError, match="must be a") as caught:
+        shape_from_dict({**table, "rotation_deg": value})
+    assert caught.value.field == "indenter.rotation_deg"
+
+
+def test_a_zero_rotation_is_no_rotation():
+    assert shape_from_dict({"shape": "triangle", "side": 1.0, "rotation_deg": 0}) == shapes.Triangle.equilateral(1.0)
+    assert shape_from_dict({"shape": "square", "side": 1.0, "rotation_deg": 0}) == shapes.Square(1.0)
+
+
+_BRUSH = {"shape": "brush", "side": 1.0, "pillar_radius": 0.05}
+
+
+@pytest.mark.parametrize(
+    "table, field, users",
+    [
+        ({"layout": "regular", "count": -3, "seed": -1}, "indenter.count", "layouts 'random' and 'mixed'"),
+        ({"layout": "regular", "seed": 0}, "indenter.seed", "layouts 'random' and 'mixed'"),  # even the default
+        ({"count": 10}, "indenter.count", "layouts 'random' and 'mixed'"),  # regular by default
+        ({"layout": "random", "count": 5, "pitch": -7}, "indenter.pitch", "layout 'regular'"),
+        ({"layout": "mixed", "count": 5, "pitch": 0.2}, "indenter.pitch", "layout 'regular'"),  # even the default
+    ],
+)
+def test_a_brush_key_its_layout_does_not_use_is_refused(table, field, users):
+    with pytest.raises(cs.SceneError, match=f"only applies to {users}") as caught:
+        shape_from_dict({**_BRUSH, **table})
+    assert caught.value.field == field
+
+
+def test_each_brush_layout_takes_its_own_keys():
+    regular = shape_from_dict({**_BRUSH, "layout": "regular", "pitch": 0.3})
+    assert regular == shapes.Brush(1.0, 0.05, pitch=0.3)
+    for layout in ("random", "mixed"):
+        brush = shape_from_dict({**_BRUSH, "layout": layout, "count": 6, "seed": 2})
+        assert brush == shapes.Brush(1.0, 0.05, layout=layout, count=6, seed=2) and len(brush.parts) == 6
+
+
 @pytest.mark.parametrize(
     "table, field",
     [

@@ -74,6 +74,13 @@ BAD = [
     ("material.model", "rubber", "material.model"),
     ("adhesion.work_of_adhesion", -0.1, "adhesion.work_of_adhesion"),
     ("adhesion.colour", "red", "adhesion.colour: unknown key"),
+    # a potential shapes a finite-range interaction: without a range it would be ignored
+    (
+        "adhesion.potential",
+        "maugis_dugdale",
+        "adhesion.potential: names the form of a finite-range .*needs adhesion.range",
+    ),
+    ("adhesion.potential", "exponential", "adhesion.potential: .*give range too, or leave potential out"),
     ("indenter.shape", "blob", "indenter.shape: unknown shape 'blob'"),
     ("indenter.radius", float("nan"), "indenter.radius: must be a finite number"),
     ("indenter.radius", _DELETE, "indenter.radius: is required"),
@@ -88,6 +95,12 @@ BAD = [
 def test_bad_values_name_field_and_range(path, value, message):
     with pytest.raises(cs.SceneError, match=message):
         scene_from_dict(with_(path, value))
+
+
+def test_a_potential_with_a_range_is_the_scenes():
+    d = with_("adhesion.potential", "maugis_dugdale")
+    d["adhesion"]["range"] = 0.05
+    assert scene_from_dict(d).adhesion == cs.Adhesion(1.0, 0.05, "maugis_dugdale")
 
 
 def test_graded_exponent_range():
@@ -197,6 +210,46 @@ def test_cli_bad_scene_exits_2_without_traceback(tmp_path, text, field):
     r = _cli("scene", "check", str(p))
     assert r.returncode == 2
     assert "Traceback" not in r.stderr and r.stderr.startswith(f"error: {field}")
+
+
+def test_a_byte_order_mark_is_skipped(tmp_path):
+    """A UTF-8 file that starts with a byte-order mark (as some editors write it) is the same
+    scene; tomllib alone called it an "Invalid statement (at line 1, column 1)"."""
+    text = (SCENE_DIR / "kendall_circle.toml").read_bytes()
+    path = tmp_path / "kendall_circle.toml"
+    path.write_bytes(b"\xef\xbb\xbf" + text)
+    assert cs.load_scene(path) == cs.load_scene(SCENE_DIR / "kendall_circle.toml")
+
+
+def test_a_builtin_name_is_not_shadowed_by_the_current_directory(tmp_path, monkeypatch):
+    """A built-in scene's name means that scene wherever the command runs; ./name is the file.
+    A directory called square made ``scene check square`` say "is a directory", an empty file
+    called star "scene.adhesion: is required"."""
+    from crossval.suite import BUILTIN, load_scene_or_builtin
+
+    (tmp_path / "square").mkdir()
+    (tmp_path / "star").write_text("")
+    (tmp_path / "faces").mkdir()
+    monkeypatch.chdir(tmp_path)
+    assert load_scene_or_builtin("square") is BUILTIN["square"]
+    assert load_scene_or_builtin("star") is BUILTIN["star"]
+    for arg, says in (
+        ("./star", "scene.adhesion: is required"),
+        (Path("star"), "scene.adhesion: is required"),  # a path object is always a file
+        ("./square", "file: './square' is a directory"),
+        ("faces", "file: 'faces' is a directory"),
+        ("no_such_scene", "file: no file 'no_such_scene' and no built-in scene of that name"),
+    ):
+        with pytest.raises(cs.SceneError, match=says):
+            load_scene_or_builtin(arg)
+    by_name = json.loads(_cli("scene", "check", "square", "--json", cwd=tmp_path).stdout)
+    assert by_name["name"] == "square" and by_name["shape"] == "square"
+    for arg, says in (("star", None), ("./star", "error: scene.adhesion"), ("./square", "error: file: './square'")):
+        r = _cli("scene", "check", arg, cwd=tmp_path)
+        if says is None:
+            assert r.returncode == 0, r.stderr
+        else:
+            assert r.returncode == 2 and r.stderr.startswith(says) and "Traceback" not in r.stderr, r.stderr
 
 
 def test_cli_missing_file_exits_2():

@@ -393,9 +393,14 @@ def test_checked_parameters_are_stored_checked_and_conditional_ones_only_where_t
     # stored as floats (a scene's repr is the result cache's key: 1 and 1.0 must give one key)
     assert repr(cs.Circle(1, [0, 1])) == "Circle(radius=1.0, center=(0.0, 1.0))"
     assert repr(cs.TwoCircles(1, 1, 1)) == "TwoCircles(radius1=1.0, radius2=1.0, distance=1.0)"
-    # a random brush has no lattice pitch, a regular one no count or seed
-    assert len(cs.Brush(1.0, 0.05, layout="random", count=3, pitch=0.0).parts) == 3
-    assert len(cs.Brush(1.0, 0.05, count=-1, seed=-1).parts) == 25
+    # a random brush has no lattice pitch, a regular one no count or seed: left at their
+    # defaults they are not checked, given another value they are refused (not ignored)
+    assert len(cs.Brush(1.0, 0.05, layout="random", count=3).parts) == 3
+    assert len(cs.Brush(1.0, 0.05).parts) == 25
+    with pytest.raises(cs.SceneError, match="indenter.pitch: only applies to layout 'regular'"):
+        cs.Brush(1.0, 0.05, layout="random", count=3, pitch=0.0)
+    with pytest.raises(cs.SceneError, match="indenter.count: only applies to layouts 'random' and 'mixed'"):
+        cs.Brush(1.0, 0.05, count=-1, seed=-1)
 
 
 def test_the_largest_allowed_regular_polygon_and_star_are_built_without_the_pairwise_edge_check():

@@ -235,6 +235,47 @@ def test_each_declared_field_refuses_just_outside_and_accepts_just_inside(exampl
             raise AssertionError(f"unknown kind {check.kind!r}")
 
 
+UNUSED_CASES = [
+    (cls, attribute) for cls, attribute in CASES if dict(declared_fields(cls))[attribute].unused is not None
+]
+
+
+@pytest.mark.parametrize("cls,attribute", UNUSED_CASES, ids=[f"{c.__name__}.{a}" for c, a in UNUSED_CASES])
+def test_a_field_not_used_here_is_refused_unless_it_keeps_its_default(examples, cls, attribute):
+    """A declared field that does not apply (its ``when`` is false) and says so (``unused``) is
+    refused by name when given another value than its default, the value it would ignore (a
+    regular brush given count = -3, a random one given pitch = -7); the default still builds."""
+    prefix, instances = examples[cls]
+    check = dict(declared_fields(cls))[attribute]
+    name = check.name or f"{prefix}.{attribute}"
+    default = next(f.default for f in dataclasses.fields(cls) if f.name == attribute)
+    idle = [obj for obj in instances if not check.when(obj)]
+    assert idle, f"no example switches off {cls.__name__}.{attribute}"
+    for obj in idle:
+        assert getattr(_construct(obj, attribute, default), attribute) == default
+        others = [default + 1, -3, "x", math.nan] + ([False] if isinstance(default, int) else [])
+        for value in others:
+            message = str(_refused(obj, attribute, value, name))
+            assert "only applies to" in message, message
+
+
+def test_a_brush_names_the_layouts_that_use_a_parameter():
+    with pytest.raises(cs.SceneError, match=r"indenter.count: only applies to layouts 'random' and 'mixed'"):
+        cs.Brush(1.0, 0.05, layout="regular", count=-3, seed=-1)
+    with pytest.raises(cs.SceneError, match=r"indenter.pitch: only applies to layout 'regular', not to layout 'mixed'"):
+        cs.Brush(1.0, 0.05, layout="mixed", count=5, pitch=-7)
+    with pytest.raises(cs.SceneError, match=r"indenter.seed: only applies to layouts"):
+        cs.Brush(1.0, 0.05, seed=3)
+    # each layout's own parameters, the others at their defaults
+    assert len(cs.Brush(1.0, 0.05, pitch=0.3, count=0, seed=0).parts) == 16  # 4 x 4 at pitch 0.3
+    assert len(cs.Brush(1.0, 0.05, layout="random", count=4, seed=2, pitch=0.2).parts) == 4
+
+
+def test_unused_needs_when():
+    with pytest.raises(TypeError, match="give when too"):
+        real(1.0, unused="only applies elsewhere")
+
+
 # -- the key physical ranges, written out ------------------------------------------------------
 
 _EPS = 1e-12

@@ -13,15 +13,58 @@ from .composite import Union
 from .conics import Circle
 from .polygons import Square
 
-__all__ = ["Brush"]
+__all__ = ["Brush", "LAYOUTS", "LAYOUT_PARAMETERS", "unused_by_layout"]
 
 _RANDOM_LAYOUTS = ("random", "mixed")
+#: every layout a brush accepts
+LAYOUTS = ("regular", *_RANDOM_LAYOUTS)
 #: placement attempts per pillar before a random layout gives up
 _ATTEMPTS_PER_PILLAR = 200
 
 
 def _placed_at_random(layout: str) -> bool:
     return layout in _RANDOM_LAYOUTS
+
+
+#: the layouts that use each layout-dependent parameter; the others refuse it (the scene reader
+#: when the key is given at all, the class when it differs from its default)
+LAYOUT_PARAMETERS: dict[str, tuple[str, ...]] = {
+    "pitch": ("regular",),
+    "count": _RANDOM_LAYOUTS,
+    "seed": _RANDOM_LAYOUTS,
+}
+
+
+def unused_by_layout(parameter: str, layout: str, *, layout_given: bool = True) -> str:
+    """Why ``parameter`` is refused for ``layout``: which layouts use it.
+
+    Parameters
+    ----------
+    parameter : str
+        A key of :data:`LAYOUT_PARAMETERS` (``"pitch"``, ``"count"`` or ``"seed"``).
+    layout : str
+        The brush's layout, one that does not use ``parameter``.
+    layout_given : bool, optional
+        False when ``layout`` is the default because none was given (the message says so).
+
+    Returns
+    -------
+    str
+        The message, e.g. "only applies to layout 'regular', not to layout 'random'".
+    """
+    users = LAYOUT_PARAMETERS[parameter]
+    which = f"layout {users[0]!r}" if len(users) == 1 else "layouts " + " and ".join(map(repr, users))
+    default = "" if layout_given else ", the default when no layout is given"
+    return f"only applies to {which}, not to layout {layout!r}{default}"
+
+
+def _layout_field(parameter: str) -> dict:
+    """``when`` and ``unused`` of a layout-dependent field: checked where its layout uses it,
+    refused (unless it keeps its default) where not."""
+    return {
+        "when": lambda brush: brush.layout in LAYOUT_PARAMETERS[parameter],
+        "unused": lambda brush: unused_by_layout(parameter, brush.layout),
+    }
 
 
 @dataclass(frozen=True)
@@ -45,26 +88,30 @@ class Brush(Union):
         How the pillars are placed; ``"regular"`` by default.
     pitch : float, optional
         Distance between neighbouring pillars of the regular lattice, > 2 pillar_radius; 0.2 by
-        default.
+        default.  Regular layout only: another layout refuses a pitch other than the default.
     count : int, optional
-        Number of pillars of a random or mixed layout, 1 <= count <= 100000.
+        Number of pillars of a random or mixed layout, 1 <= count <= 100000 (no default for
+        those); a regular layout refuses a count.
     seed : int, optional
-        Seed of the random placement, >= 0.
+        Seed of the random placement, >= 0; 0 by default.  Random and mixed layouts only: a
+        regular layout refuses a seed other than 0.
 
     Raises
     ------
     contact_scene.SceneError
-        Naming the parameter (``indenter.pitch`` etc.) and its allowed range, or
-        ``indenter.count`` when that many pillars do not fit.
+        Naming the parameter (``indenter.pitch`` etc.) and its allowed range;
+        ``indenter.pitch``, ``indenter.count`` or ``indenter.seed`` given (other than its
+        default) to a layout that does not use it; ``indenter.count`` when that many pillars do
+        not fit.
     """
 
     parts: tuple = field(default=(), init=False, repr=False)
     side: float = real(1.0, gt=0)
     pillar_radius: float = real(0.05, gt=0, le=lambda brush: brush.side / 2)
-    layout: str = choice("regular", ("regular", *_RANDOM_LAYOUTS))
-    pitch: float = real(0.2, gt=lambda brush: 2 * brush.pillar_radius, when=lambda brush: brush.layout == "regular")
-    count: int = whole(0, ge=1, le=100_000, when=lambda brush: _placed_at_random(brush.layout))
-    seed: int = whole(0, ge=0, when=lambda brush: _placed_at_random(brush.layout))
+    layout: str = choice("regular", LAYOUTS)
+    pitch: float = real(0.2, gt=lambda brush: 2 * brush.pillar_radius, **_layout_field("pitch"))
+    count: int = whole(0, ge=1, le=100_000, **_layout_field("count"))
+    seed: int = whole(0, ge=0, **_layout_field("seed"))
     kind = "brush"
 
     def _complete(self):
