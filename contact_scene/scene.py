@@ -80,13 +80,13 @@ class Adhesion:
     potential : str, optional
         The finite-range potential's form (:class:`bem_energy.Potential`): ``"exponential"``
         (the default) or ``"maugis_dugdale"``.  It shapes the interaction of the given
-        ``range`` and has none to shape without one (a scene file refuses ``potential``
-        without ``range``).
+        ``range``, so another than the default needs a range.
 
     Raises
     ------
     contact_scene.SceneError
-        Naming ``adhesion.<field>`` and its allowed values, for a value outside them.
+        Naming ``adhesion.<field>`` and its allowed values, for a value outside them;
+        ``adhesion.potential`` for a potential other than the default without a range.
     """
 
     work_of_adhesion: float = real(ge=0)
@@ -96,6 +96,14 @@ class Adhesion:
 
     def __post_init__(self):
         check_fields(self, "adhesion")
+        # a rule joining two fields: the zero-range limit has no potential, so one named without
+        # a range would be ignored; the default passes, as it cannot be told from "not given"
+        if self.range is None and self.potential != "exponential":
+            raise SceneError(
+                "adhesion.potential",
+                "names the form of a finite-range interaction and needs a range; without one the scene is "
+                f"the zero-range limit, which has no potential (got {self.potential!r})",
+            )
 
 
 @dataclass(frozen=True)

@@ -371,7 +371,9 @@ def same_grid_partners(scene: cs.Scene, results: dict, *, among=None) -> dict[st
         return {}
     import dataclasses
 
-    bare = dataclasses.replace(scene, adhesion=dataclasses.replace(scene.adhesion, work_of_adhesion=0.0, range=None))
+    bare = dataclasses.replace(
+        scene, adhesion=dataclasses.replace(scene.adhesion, work_of_adhesion=0.0, range=None, potential="exponential")
+    )
     R = scene.indenter.shape.equivalent_radius
     out: dict[str, tuple[cs.Scene, str, float]] = {}
     for r in results.values():

@@ -542,6 +542,8 @@ _KENDALL = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.A
         (lambda: cs.Grid(elements_per_radius=8).spacing_for(cs.Circle(1e200)), "indenter"),
         # a range whose square leaves floating point (the potential's curvature is w / rho^2)
         (lambda: cs.Adhesion(1.0, 1e-300), "adhesion.range"),
+        # a potential shapes a finite-range interaction: without a range it would be ignored
+        (lambda: cs.Adhesion(1.0, None, "maugis_dugdale"), "adhesion.potential"),
         (lambda: cs.Adhesion(1.0, 1e300), "adhesion.range"),
         # two process zones too close for the last step to say anything
         (lambda: ZeroRangeSettings(ratios=(0.32, 0.3199999), rate=0.5), "settings.ratios"),
