@@ -396,7 +396,8 @@ def test_cli_refuses_range_for_zero_range_methods(method):
             "100",
             "--resolution: bem_energy takes from 0.25 to 64 here; it means elements per process zone",
         ),
-        ("bem_griffith", "0", "--resolution: must be a number > 0 (got 0)"),
+        ("bem_griffith", "0", "--resolution: must be a finite number > 0 (got 0)"),
+        ("bem_griffith", "inf", "--resolution: must be a finite number > 0 (got inf)"),
     ],
 )
 def test_cli_resolution_errors_speak_of_the_option(method, resolution, says):
