@@ -411,6 +411,8 @@ def report_cmd(quick, out_dir, workers, scheduler, no_cache):
     from .report import report, report_jobs
     from .runner import default_workers
 
+    if scheduler is not None and workers is not None:
+        raise SceneError("--workers", "has no effect with --scheduler: the cluster's workers run the jobs; drop one")
     _check_out_dir(out_dir)
     bar, cb = _progress(len(report_jobs(SUITE, quick=quick)), "report")
     with bar, logging_redirect_tqdm():

@@ -135,3 +135,6 @@ def test_report_and_regress_refuse_bad_options_by_name_before_solving(tmp_path, 
     r = _run("report", "--quick", "--no-cache", "--out", "rep", "--scheduler", "notanaddress")
     assert r.exit_code == 2 and "--scheduler" in r.output and "notanaddress" in r.output, r.output
     assert _run("regress", "--workers", "-5").exit_code == 2
+    # local workers and a cluster exclude each other: --workers was silently ignored
+    r = _run("report", "--quick", "--out", "rep", "--scheduler", "tcp://127.0.0.1:1", "--workers", "2")
+    assert r.exit_code == 2 and "--workers" in r.output, r.output
