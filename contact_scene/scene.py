@@ -102,7 +102,8 @@ class Adhesion:
             raise SceneError(
                 "adhesion.potential",
                 "names the form of a finite-range interaction and needs a range; without one the scene is "
-                f"the zero-range limit, which has no potential (got {self.potential!r})",
+                f"the zero-range limit, which has no potential (got {self.potential!r}; dropping the range, "
+                "set potential='exponential', the default, too)",
             )
 
 

@@ -25,6 +25,7 @@ class's ``__post_init__``.
 from __future__ import annotations
 
 import dataclasses
+import numbers
 from collections.abc import Callable
 from dataclasses import MISSING
 from typing import Any
@@ -218,6 +219,10 @@ def _is_default(f: dataclasses.Field, value) -> bool:
         return False
     if value is default:
         return True
+    if isinstance(value, bool) or isinstance(default, bool):
+        return type(value) is type(default) and value == default  # False is not a default 0
+    if isinstance(value, numbers.Real) and isinstance(default, numbers.Real):
+        return bool(value == default)  # numpy's int64(0) is a default 0
     try:
         return type(value) is type(default) and bool(value == default)
     except Exception:  # an array or another object without a plain truth value

@@ -413,6 +413,15 @@ def report_cmd(quick, out_dir, workers, scheduler, no_cache):
 
     if scheduler is not None and workers is not None:
         raise SceneError("--workers", "has no effect with --scheduler: the cluster's workers run the jobs; drop one")
+    if scheduler is not None:
+        # checked before the cache is read: with every result cached no connection is made, and
+        # a malformed address would pass unnoticed
+        from distributed.comm import get_address_host_port
+
+        try:
+            get_address_host_port(scheduler)
+        except ValueError as exc:
+            raise SceneError("--scheduler", f"not a scheduler address ({exc}); e.g. tcp://host:8786") from None
     _check_out_dir(out_dir)
     bar, cb = _progress(len(report_jobs(SUITE, quick=quick)), "report")
     with bar, logging_redirect_tqdm():

@@ -203,7 +203,7 @@ class Method:
         if resolution is None:
             return
         if isinstance(resolution, bool) or not isinstance(resolution, (int, float)):
-            raise SceneError(field, f"must be a number > 0 (got {resolution!r})")
+            raise SceneError(field, f"must be a finite number > 0 (got {resolution!r})")
         if not (math.isfinite(resolution) and resolution > 0):
             raise SceneError(field, f"must be a finite number > 0 (got {resolution:g})")
         r = self.resolution(scene)

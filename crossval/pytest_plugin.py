@@ -28,6 +28,7 @@ def adhesion_reference():
         solved once per session.
     """
     from .reference import reference
+    from .suite import BUILTIN
 
     cache: dict = {}
     # objects keyed by identity stay referenced here: an id is unique only while its object
@@ -37,7 +38,11 @@ def adhesion_reference():
 
     def key_of(scene_or_name):
         if isinstance(scene_or_name, str):
-            return ("name or path", scene_or_name)
+            # a built-in name is that scene wherever the test runs; any other string is a path,
+            # resolved, so that two tests in different directories do not share "scene.toml"
+            if scene_or_name in BUILTIN:
+                return ("built-in", scene_or_name)
+            return ("path", str(Path(scene_or_name).resolve()))
         if isinstance(scene_or_name, os.PathLike):
             return ("path", str(Path(scene_or_name).resolve()))
         try:

@@ -138,8 +138,21 @@ def test_plugin_fixture_gives_each_scene_file_its_own_reference(pytester):
                 ref = adhesion_reference(Path(f"circle_E{E}.toml"), resolution=16)
                 gc.collect()
                 assert ref.scene.material.youngs_modulus == E
+
+        def test_same_name_in_two_directories(adhesion_reference, tmp_path, monkeypatch):
+            # a string path is resolved too: "scene.toml" in two directories is two scenes
+            for E in (4, 16):
+                (tmp_path / str(E)).mkdir()
+                (tmp_path / str(E) / "scene.toml").write_text(
+                    Path(f"circle_E{E}.toml").read_text()
+                )
+            here = Path.cwd()
+            for E in (4, 16):
+                monkeypatch.chdir(tmp_path / str(E))
+                assert adhesion_reference("scene.toml", resolution=16).scene.material.youngs_modulus == E
+                monkeypatch.chdir(here)
     """)
-    pytester.runpytest().assert_outcomes(passed=1)
+    pytester.runpytest().assert_outcomes(passed=2)
 
 
 def test_a_scene_without_adhesion_passes_its_zero_force_checks():

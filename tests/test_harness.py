@@ -252,3 +252,24 @@ def test_an_edited_solver_is_a_cache_miss(monkeypatch):
     assert len(digest) == 64 and digest == cache_module.source_digest()
     monkeypatch.setattr(cache_module, "source_digest", lambda: "0" * 64)
     assert ResultCache.key(JOBS[0].scene, JOBS[0].method, JOBS[0].resolution) != before
+
+
+def test_the_source_digest_follows_an_edit_of_a_solver_file(tmp_path, monkeypatch):
+    # the digest reads the packages' files, not a version: edit one and it changes
+    import crossval.cache as cache_module
+
+    package = tmp_path / "fake_solver"
+    package.mkdir()
+    (package / "__init__.py").write_text("")
+    (package / "model.json").write_text('{"c": 0.5}')
+    (package / "kernel.py").write_text("PI = 3.14159\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.setattr(cache_module, "_RESULT_SOURCES", ("fake_solver",))
+    digests = []
+    for edit in (None, ("kernel.py", "PI = 3.11\n"), ("model.json", '{"c": 0.6}')):
+        if edit is not None:
+            (package / edit[0]).write_text(edit[1])
+        cache_module.source_digest.cache_clear()
+        digests.append(cache_module.source_digest())
+    cache_module.source_digest.cache_clear()
+    assert len(set(digests)) == 3

@@ -521,8 +521,27 @@ def test_a_face_whose_area_leaves_floating_point_is_refused_by_name(s):
         with pytest.raises(cs.SceneError) as caught:
             cs.rasterise(face, 0.1 * s)
         assert caught.value.field == "indenter"
+    # far from the origin the coordinates' rounding reaches the boundary tolerance: the raster of
+    # a circle 1e14 sizes away lost cells; 1e12 sizes away it is the one at the origin
+    at_origin = cs.rasterise(cs.Circle(1.0), 0.04).mask
+    assert np.array_equal(cs.rasterise(cs.Circle(1.0, (1e12, 3e11)), 0.04).mask, at_origin)
+    with pytest.raises(cs.SceneError) as caught:
+        cs.rasterise(cs.Circle(1.0, (1e14, 3e13)), 0.04)
+    assert caught.value.field == "indenter" and "origin" in str(caught.value)
     # a cut face whose base area underflowed is not a face the cuts removed
     if s < 1:
         with pytest.raises(cs.SceneError) as caught:
             cs.Difference(cs.Circle(s), (cs.Square(s),))
         assert caught.value.field == "indenter.base"
+
+
+def test_a_layouts_unused_parameter_at_its_default_passes_in_any_numeric_type():
+    # numpy's int64(0) is the default seed of a regular brush, not a value given for it
+    assert cs.Brush(1.0, 0.05, seed=np.int64(0)).seed == 0
+    with pytest.raises(cs.SceneError, match="indenter.seed"):
+        cs.Brush(1.0, 0.05, seed=np.int64(3))
+
+
+def test_a_polygon_whose_extent_overflows_is_refused_not_given_a_nan_area():
+    with pytest.raises(cs.SceneError, match="indenter.vertices"):
+        _ = cs.Polygon(((-1e308, 0.0), (1e308, 0.0), (0.0, 1e308))).area

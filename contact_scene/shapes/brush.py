@@ -55,7 +55,10 @@ def unused_by_layout(parameter: str, layout: str, *, layout_given: bool = True) 
     users = LAYOUT_PARAMETERS[parameter]
     which = f"layout {users[0]!r}" if len(users) == 1 else "layouts " + " and ".join(map(repr, users))
     default = "" if layout_given else ", the default when no layout is given"
-    return f"only applies to {which}, not to layout {layout!r}{default}"
+    return (
+        f"only applies to {which}, not to layout {layout!r}{default} (switching layouts with "
+        "dataclasses.replace: give it its default too)"
+    )
 
 
 def _layout_field(parameter: str) -> dict:

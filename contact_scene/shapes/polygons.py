@@ -100,12 +100,16 @@ class PolygonalShape(Shape):
                 f"vertices {i} and {(i + 1) % len(v)} coincide; give each corner once (a closed ring's "
                 "last vertex repeats its first: leave it out)",
             )
+        with np.errstate(over="ignore"):  # an extent past the largest float: refused just below
+            extent_finite = np.isfinite(np.ptp(v, axis=0)).all()
+        if not extent_finite:
+            raise SceneError("indenter.vertices", "the polygon's extent overflows floating point: rescale lengths")
         unit, _, _ = _unit_frame(v)
         if not self.simple_by_construction:
             self._check_simple(unit)
         signed_area = shoelace_area(unit)
         extent = np.ptp(unit, axis=0).max()
-        if abs(signed_area) <= 1e-12 * extent**2 or extent == 0:
+        if not abs(signed_area) > 1e-12 * extent**2 or extent == 0:
             raise SceneError(
                 "indenter.vertices", "the polygon is empty (zero area); give at least 3 non-collinear vertices"
             )
