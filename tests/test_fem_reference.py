@@ -474,3 +474,47 @@ def test_snapshots_and_a_range_are_named_as_not_done():
     assert len(notes) == 1 and "ignored" in notes[0] and "zero-range" in notes[0]
     plain = fr.solve(scene(mat), fr.FemSettings(grading=2, order=2))
     assert plain.pulloff_force == r.pulloff_force and not any("range" in m for m in plain.messages)
+
+
+@pytest.mark.parametrize("k,grading", [(1e-9, 4.0), (1e-6, 2.0), (1e-3, 4.0)])
+def test_a_small_exponent_converges_and_meets_the_closed_forms(k, grading):
+    """k -> 0 on the coarse meshes: the tensor mesh's zeta-graded lines once nearly coincided
+    with the physically graded ones (slivers 11.5 k of a layer) and, with nu = 1/(2 + k) near
+    1/2, the solve reported a residual up to 4.5e-5 (k = 1e-6, grading 4: K = -8.9e5, dK/da
+    negative).  Now each quantity lies within its bound (measured K errors 5.9e-3, 4.0e-4,
+    5.9e-3 against bounds 1.4e-2, 7.6e-4, 1.4e-2), the bound shrinking with the grading as at
+    k = 0 (Kendall, nu = 1/2: 2.3e-5 at grading 2)."""
+    mat = cs.PowerLawGraded(1.5, 2.0, k)
+    r = solved(mat, grading)
+    assert r.converged, r.messages
+    assert r.residual < 1e-8
+    err, est = errors(r, mat, 0.7, 0.3), r.info["error_estimates"]
+    for q in QUANTITIES:
+        assert err[q] <= est[q], (q, err[q], est[q])
+    assert r.info["stiffness_reaction"] == pytest.approx(r.stiffness, rel=1e-8)
+
+
+def _tensor_nodes(k, grading):
+    from fem_reference.model import build_tensor_mesh
+
+    m = Material(k, 1 / (2 + k)).mapping
+    return build_tensor_mesh(domain=2.0**20, ratio=1 + grading, h_min=1e-5, mapping=m).p
+
+
+def test_tensor_mesh_drops_near_coincident_lines_only_for_small_exponents(monkeypatch):
+    """The zeta-graded lines are left out when the first of them, h_min, lies within
+    FILL_MIN_GAP = 1/2 of a layer of the first physical line h_min^(1 - k): k < 0.035 here.
+    There no layer is thinner than a tenth of both its neighbours (once 1.2e-8 at k = 1e-9,
+    0.0025 at k = 1e-3, grading 4); for k >= 0.25 the mesh is, node for node, the one built
+    with every zeta-graded line (FILL_MIN_GAP = 0, the rule-free path)."""
+    import fem_reference.model as model
+
+    for k in (1e-9, 1e-6, 1e-3, 0.01):
+        for grading in (0.5, 1.0, 2.0, 4.0):
+            t = np.diff(np.unique(_tensor_nodes(k, grading)[1]))
+            sandwiched = t[1:-1] / np.minimum(t[:-2], t[2:])
+            assert sandwiched.min() > 0.1, (k, grading, sandwiched.min())
+    kept = {(k, g): _tensor_nodes(k, g) for k in (0.25, 0.5, 0.9, 0.999) for g in (1.0, 2.0, 4.0)}
+    monkeypatch.setattr(model, "FILL_MIN_GAP", 0.0)
+    for (k, g), nodes in kept.items():
+        assert np.array_equal(nodes, _tensor_nodes(k, g)), (k, g)
