@@ -55,10 +55,7 @@ def unused_by_layout(parameter: str, layout: str, *, layout_given: bool = True) 
     users = LAYOUT_PARAMETERS[parameter]
     which = f"layout {users[0]!r}" if len(users) == 1 else "layouts " + " and ".join(map(repr, users))
     default = "" if layout_given else ", the default when no layout is given"
-    return (
-        f"only applies to {which}, not to layout {layout!r}{default} (switching layouts with "
-        "dataclasses.replace: give it its default too)"
-    )
+    return f"only applies to {which}, not to layout {layout!r}{default}"
 
 
 def _layout_field(parameter: str) -> dict:
@@ -66,7 +63,11 @@ def _layout_field(parameter: str) -> dict:
     refused (unless it keeps its default) where not."""
     return {
         "when": lambda brush: brush.layout in LAYOUT_PARAMETERS[parameter],
-        "unused": lambda brush: unused_by_layout(parameter, brush.layout),
+        # a brush's layout switched with dataclasses.replace keeps the old layout's values
+        "unused": lambda brush: (
+            unused_by_layout(parameter, brush.layout)
+            + " (switching layouts with dataclasses.replace: give it its default too)"
+        ),
     }
 
 
