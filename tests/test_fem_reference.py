@@ -518,3 +518,18 @@ def test_tensor_mesh_drops_near_coincident_lines_only_for_small_exponents(monkey
     monkeypatch.setattr(model, "FILL_MIN_GAP", 0.0)
     for (k, g), nodes in kept.items():
         assert np.array_equal(nodes, _tensor_nodes(k, g)), (k, g)
+
+
+def test_the_registry_entry_solves_a_scene_asking_for_fields_without_them_and_says_so():
+    # the command line and the harness name no fields file: the FEM refused the scene, which
+    # stopped `crossval compare` of every method on it after the others had run
+    import dataclasses
+
+    from fem_reference.solver import solve_with_resolution
+
+    scene = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0))
+    asking = dataclasses.replace(scene, outputs=cs.Outputs(fields=True))
+    plain, noted = solve_with_resolution(scene, 0.5), solve_with_resolution(asking, 0.5)
+    assert noted.converged and noted.pulloff_force == plain.pulloff_force
+    assert any("fields not written" in m for m in noted.messages)
+    assert not any("fields not written" in m for m in plain.messages)
