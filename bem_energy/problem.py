@@ -31,7 +31,17 @@ from halfspace.pocketfft import POCKETFFT as _pocketfft, norm_factor
 
 from .potentials import Potential, process_zone_exponent, process_zone_length, process_zone_modulus
 
-__all__ = ["EnergyProblem", "EnergyState", "build_problem", "estimate_memory_gb"]
+__all__ = [
+    "EnergyProblem",
+    "EnergyState",
+    "build_problem",
+    "estimate_memory_gb",
+    "max_elements_per_radius",
+    "MAX_MEMORY_GB",
+]
+
+#: the working memory a solve may take by default (``max_memory_gb`` of the solvers)
+MAX_MEMORY_GB = 8.0
 
 
 class EnergyState(NamedTuple):
@@ -70,6 +80,41 @@ def estimate_memory_gb(nx: int, ny: int, memory: int = 10) -> float:
     dominate (2 m vectors), plus the symbol and a handful of work arrays."""
     padded = 4 * max(nx, ny) ** 2
     return padded * 8 * (2 * memory + 16) / 1e9
+
+
+def max_elements_per_radius(scene: Scene, *, max_memory_gb: float = MAX_MEMORY_GB, memory: int = 10) -> int:
+    """The finest grid, in elements per equivalent radius, whose memory estimate
+    (:func:`estimate_memory_gb`) fits in ``max_memory_gb``, from the face's bounding box.
+
+    Parameters
+    ----------
+    scene : contact_scene.Scene
+        The scene.
+    max_memory_gb : float, optional
+        The limit, :data:`MAX_MEMORY_GB` by default.
+    memory : int, optional
+        L-BFGS-B's correction pairs (``EnergySettings.memory``).
+
+    Returns
+    -------
+    int
+        The largest whole number of elements per radius that fits (at least 1).
+    """
+    shape = scene.indenter.shape
+    xmin, ymin, xmax, ymax = shape.bounds
+    side = max(xmax - xmin, ymax - ymin)
+
+    def need(n: float) -> float:
+        cells = math.ceil(side / (shape.equivalent_radius / n)) + 2
+        return estimate_memory_gb(cells, cells, memory)
+
+    fits, too_fine = 1.0, 2.0
+    while need(too_fine) <= max_memory_gb:
+        fits, too_fine = too_fine, 2 * too_fine
+    for _ in range(40):  # need(n) grows like n^2: bisect to a whole number
+        middle = 0.5 * (fits + too_fine)
+        fits, too_fine = (middle, too_fine) if need(middle) <= max_memory_gb else (fits, middle)
+    return max(1, math.floor(fits))
 
 
 @dataclass(frozen=True, eq=False)
@@ -544,7 +589,7 @@ def build_problem(
     potential: Potential | None,
     *,
     memory: int = 10,
-    max_memory_gb: float = 8.0,
+    max_memory_gb: float = MAX_MEMORY_GB,
     kernel: str = "collocation",
 ) -> EnergyProblem:
     """The discrete problem of ``scene`` on a grid of ``spacing``.

@@ -25,7 +25,7 @@ from .error_model import error_bars
 from .peak import force_maximum
 from .potentials import Potential, process_zone_elements
 from .press import initial_stiffness, press
-from .problem import build_problem
+from .problem import MAX_MEMORY_GB, build_problem
 from .resolution import (
     DEFAULT_ELEMENTS_PER_RADIUS,
     MAX_DEFAULT_SIDE,
@@ -81,7 +81,7 @@ def pull_off(
     spacing: float | None = None,
     potential: Potential | None = None,
     callback=None,
-    max_memory_gb: float = 8.0,
+    max_memory_gb: float = MAX_MEMORY_GB,
 ) -> Result:
     """One finite-range pull-off by energy minimisation under a hard wall.
 

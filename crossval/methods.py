@@ -340,7 +340,18 @@ def _energy_resolution(scene: Scene) -> Resolution:
             64.0,
             False,
         )
-    return Resolution(_PER_RADIUS, _N_PER_RADIUS, _coarsest_grid(scene), math.inf, True, below=_TOO_COARSE)
+    from bem_energy import EnergySettings
+    from bem_energy.problem import max_elements_per_radius
+
+    return Resolution(
+        _PER_RADIUS,
+        _N_PER_RADIUS,
+        _coarsest_grid(scene),
+        float(max_elements_per_radius(scene, memory=EnergySettings().memory)),
+        True,
+        below=_TOO_COARSE,
+        above="a finer grid needs more than the solver's memory limit",
+    )
 
 
 METHODS: dict[str, Method] = {

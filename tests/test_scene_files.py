@@ -453,6 +453,28 @@ def test_resolution_limits_are_the_solvers_own():
         fr.solver.build(Material(0.0, 0.3), fr.FemSettings(grading=1 / (lo * 0.99)))
 
 
+def test_the_energy_bems_finest_grid_at_a_finite_range_is_its_own():
+    # a finite range's resolution is elements per radius: its upper end comes from the solver's
+    # memory model, as the Griffith BEM's does (100000 per radius was refused by the rasteriser,
+    # naming grid.spacing, an internal field the command line cannot set)
+    import dataclasses
+
+    from bem_energy.problem import build_problem, max_elements_per_radius
+    from crossval.methods import METHODS
+
+    sc = cs.load_scene(SCENE_DIR / "square.toml")
+    finite = dataclasses.replace(sc, adhesion=cs.Adhesion(sc.adhesion.work_of_adhesion, 0.5))
+    n_max = max_elements_per_radius(finite, max_memory_gb=0.05)
+    R = finite.indenter.shape.equivalent_radius
+    build_problem(finite, R / (0.9 * n_max), None, max_memory_gb=0.05)
+    with pytest.raises(cs.SceneError, match="GB"):
+        build_problem(finite, R / (1.1 * n_max), None, max_memory_gb=0.05)
+    assert METHODS["bem_energy"].resolution_range(finite)[1] == max_elements_per_radius(finite)
+    r = _cli("solve", "square", "--method", "bem_energy", "--range", "0.5", "--resolution", "100000")
+    assert r.returncode == 2 and r.stderr.startswith("error: --resolution: bem_energy takes from")
+    assert "spacing" not in r.stderr
+
+
 def test_cli_solve_refuses_bad_resolution_and_unknown_method():
     r = _cli("solve", str(SCENE_DIR / "kendall_circle.toml"), "--method", "bem_griffith", "--resolution", "1")
     assert r.returncode == 2 and "coarser grids put fewer than 4" in r.stderr and "Traceback" not in r.stderr
