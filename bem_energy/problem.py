@@ -22,6 +22,7 @@ import numpy as np
 import scipy.fft as sfft
 
 from contact_scene import Homogeneous, PowerLawGraded, Scene, SceneError, rasterise
+from contact_scene.discretisation import finest_elements_per_radius
 from halfspace.collocation import collocated_graded_influence, collocated_influence
 from halfspace.kernel import graded_influence, love_influence
 
@@ -100,21 +101,9 @@ def max_elements_per_radius(scene: Scene, *, max_memory_gb: float = MAX_MEMORY_G
     int
         The largest whole number of elements per radius that fits (at least 1).
     """
-    shape = scene.indenter.shape
-    xmin, ymin, xmax, ymax = shape.bounds
-    side = max(xmax - xmin, ymax - ymin)
-
-    def need(n: float) -> float:
-        cells = math.ceil(side / (shape.equivalent_radius / n)) + 2
-        return estimate_memory_gb(cells, cells, memory)
-
-    fits, too_fine = 1.0, 2.0
-    while need(too_fine) <= max_memory_gb:
-        fits, too_fine = too_fine, 2 * too_fine
-    for _ in range(40):  # need(n) grows like n^2: bisect to a whole number
-        middle = 0.5 * (fits + too_fine)
-        fits, too_fine = (middle, too_fine) if need(middle) <= max_memory_gb else (fits, middle)
-    return max(1, math.floor(fits))
+    return finest_elements_per_radius(
+        scene.indenter.shape, lambda nx, ny: estimate_memory_gb(nx, ny, memory), max_memory_gb
+    )
 
 
 @dataclass(frozen=True, eq=False)

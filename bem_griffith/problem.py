@@ -10,6 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from contact_scene import Homogeneous, PowerLawGraded, Scene, SceneError, rasterise, rasterise_periodic, theory
+from contact_scene.discretisation import finest_elements_per_radius
 from halfspace.kernel import (
     graded_influence,
     lattice_symbol,
@@ -138,20 +139,7 @@ def max_elements_per_radius(scene: Scene, max_memory_gb: float | None = None) ->
     """The finest grid (elements per equivalent radius) whose memory estimate fits in
     ``max_memory_gb`` (default: :class:`GriffithSettings`' limit), from the face's bounding box."""
     limit = GriffithSettings().max_memory_gb if max_memory_gb is None else max_memory_gb
-    shape = scene.indenter.shape
-    xmin, ymin, xmax, ymax = shape.bounds
-
-    def need(n: float) -> float:
-        h = shape.equivalent_radius / n
-        return estimate_memory_gb(math.ceil((xmax - xmin) / h) + 2, math.ceil((ymax - ymin) / h) + 2)
-
-    fits, too_fine = 1.0, 2.0
-    while need(too_fine) <= limit:
-        fits, too_fine = too_fine, 2 * too_fine
-    for _ in range(40):  # need(n) grows like n^2: bisect to a whole number
-        middle = 0.5 * (fits + too_fine)
-        fits, too_fine = (middle, too_fine) if need(middle) <= limit else (fits, middle)
-    return math.floor(fits)
+    return finest_elements_per_radius(scene.indenter.shape, estimate_memory_gb, limit)
 
 
 def build_problem(scene: Scene, settings: GriffithSettings) -> Problem:

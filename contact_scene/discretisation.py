@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from .errors import SceneError
 from .shapes import Shape
 from .validation import check_fields, flag, real
 
-__all__ = ["Grid"]
+__all__ = ["Grid", "finest_elements_per_radius"]
 
 
 @dataclass(frozen=True)
@@ -96,3 +97,38 @@ class Grid:
             assert self.period is not None  # __post_init__ requires it when periodic
             h = self.period / math.ceil(self.period / h * (1 - 1e-12))
         return h
+
+
+def finest_elements_per_radius(shape: Shape, memory_gb: Callable[[int, int], float], limit_gb: float) -> int:
+    """The finest grid, in elements per equivalent radius, whose memory fits in ``limit_gb``.
+
+    Each solver has its own memory model; the grid is the face's bounding box plus a ring of
+    cells, as the rasteriser lays it.
+
+    Parameters
+    ----------
+    shape : contact_scene.Shape
+        The face.
+    memory_gb : callable
+        ``memory_gb(nx, ny)``: the solver's estimate, in GB, for an nx x ny raster.
+    limit_gb : float
+        The memory limit in GB.
+
+    Returns
+    -------
+    int
+        The largest whole number of elements per radius that fits, at least 1.
+    """
+    xmin, ymin, xmax, ymax = shape.bounds
+
+    def need(n: float) -> float:
+        h = shape.equivalent_radius / n
+        return memory_gb(math.ceil((xmax - xmin) / h) + 2, math.ceil((ymax - ymin) / h) + 2)
+
+    fits, too_fine = 1.0, 2.0
+    while need(too_fine) <= limit_gb:
+        fits, too_fine = too_fine, 2 * too_fine
+    for _ in range(40):  # need(n) grows like n^2: bisect to a whole number
+        middle = 0.5 * (fits + too_fine)
+        fits, too_fine = (middle, too_fine) if need(middle) <= limit_gb else (fits, middle)
+    return math.floor(fits)
