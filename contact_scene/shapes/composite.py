@@ -338,13 +338,9 @@ def _smallest_island_incircle(face: Shape, base_pieces: list, cut_pieces: list) 
     xs = np.arange(xmin - h, xmax + 1.5 * h, h)
     ys = np.arange(ymin - h, ymax + 1.5 * h, h)
     inside, masks = _raster_inside(xs, ys, h, base_pieces, cut_pieces, keep=True)
-    labels, n = ndimage.label(inside)
+    labels, n, peaks, where_peak = numerical.islands(inside)
     if n < 2:
         return face.incircle()
-    depth = ndimage.distance_transform_edt(inside)
-    index = np.arange(1, n + 1)
-    peaks = np.asarray(ndimage.maximum(depth, labels, index), float)
-    where_peak = [tuple(int(v) for v in np.ravel(w)) for w in ndimage.maximum_position(depth, labels, index)]
     # which base pieces cover which islands: an island that is one piece alone, reached by no cut,
     # is that piece, whose own incircle is exact
     cut_boxes = [piece.bounds for piece, _ in cut_pieces]

@@ -4,10 +4,12 @@ overlapping parts, cut faces, images): area, centroid and incircle, each accurat
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 from scipy import ndimage
 
-__all__ = ["fine_grid", "raster_area", "raster_centroid", "raster_incircle", "smallest_island"]
+__all__ = ["fine_grid", "raster_area", "raster_centroid", "raster_incircle", "islands", "Islands", "smallest_island"]
 
 
 def fine_grid(shape, cells_across: int):
@@ -42,24 +44,58 @@ def raster_area(shape, cells_across: int = 2048) -> float:
     return float(np.count_nonzero(shape.contains(X, Y)) * h * h)
 
 
-def smallest_island(inside: np.ndarray) -> tuple[int, float, tuple[int, ...]]:
-    """The separate parts of a raster and the narrowest of them.
+class Islands(NamedTuple):
+    """The separate parts of a raster (:func:`islands`)."""
+
+    #: each cell's island, 1 ... number (0 outside)
+    labels: np.ndarray
+    #: the number of islands
+    number: int
+    #: each island's depth, in cells (island k at index k - 1)
+    depths: np.ndarray
+    #: each island's deepest cell, (i, j)
+    deepest: list[tuple[int, int]]
+
+
+def islands(inside: np.ndarray) -> Islands:
+    """The separate parts of a raster, each with its depth and its deepest cell.
 
     Islands are the 4-connected components of ``inside``: cells touching only at a corner, which
     meet in a point, are apart (the more islands, the narrower the narrowest).  An island's depth
     is the largest distance, in cells, from one of its cell centres to the nearest centre outside
-    the face (``scipy.ndimage.distance_transform_edt``); the narrowest island is the one of least
-    depth.  ``inside`` must have an empty border, or the array's edge does not count as outside.
+    the face (``scipy.ndimage.distance_transform_edt``).  ``inside`` must have an empty border,
+    or the array's edge does not count as outside.  Depths and deepest cells are computed only
+    for two or more islands (a face of one part has its incircle).
+
+    Parameters
+    ----------
+    inside : numpy.ndarray
+        The raster, boolean.
+
+    Returns
+    -------
+    Islands
+        Labels, number, depths and deepest cells (the last two empty for fewer than two islands).
+    """
+    labels, n = ndimage.label(inside)
+    if n < 2:
+        return Islands(labels, n, np.zeros(0), [])
+    depth = ndimage.distance_transform_edt(inside)
+    index = np.arange(1, n + 1)
+    depths = np.asarray(ndimage.maximum(depth, labels, index), float)
+    deepest = [(int(w[0]), int(w[1])) for w in ndimage.maximum_position(depth, labels, index)]
+    return Islands(labels, n, depths, deepest)
+
+
+def smallest_island(inside: np.ndarray) -> tuple[int, float, tuple[int, ...]]:
+    """The separate parts of a raster and the narrowest of them (:func:`islands`), the island of
+    least depth.
 
     Returns (number of islands, depth of the narrowest, its deepest cell's index); with fewer
     than two islands, (number, 0.0, ()): the face's incircle is then its narrowest part's.
     """
-    labels, n = ndimage.label(inside)
-    if n < 2:
-        return n, 0.0, ()
-    depth = ndimage.distance_transform_edt(inside)
-    index = np.arange(1, n + 1)
-    peaks = np.asarray(ndimage.maximum(depth, labels, index), float)
-    k = int(np.argmin(peaks))
-    where = np.asarray(ndimage.maximum_position(depth, labels, k + 1), np.int64).ravel()
-    return n, float(peaks[k]), tuple(int(i) for i in where)
+    found = islands(inside)
+    if found.number < 2:
+        return found.number, 0.0, ()
+    k = int(np.argmin(found.depths))
+    return found.number, float(found.depths[k]), found.deepest[k]
