@@ -639,8 +639,6 @@ def solve_with_resolution(scene: Scene, resolution: float | None, *, callback=No
     # the FEM writes fields only to a file (FemSettings.fields_path), which the registry's callers
     # (the command line, the harness) do not name: solve without them and say so, rather than
     # stop a comparison of every method on the scene
-    import dataclasses
-
     plain = dataclasses.replace(scene, outputs=dataclasses.replace(scene.outputs, fields=False))
     result = solve(plain, s, callback=callback)
     note = (
