@@ -42,10 +42,6 @@ FLATTENING = 0.5
 #: bracket's width
 CLOSING, CLOSEST = 0.9, 8.0
 
-#: the force maximum's Brent search runs in y = OFFSET + (d - lower) / (upper - lower), a
-#: variable of nearly constant size over the bracket (see ``_refine_smooth_maximum``)
-BRENT_OFFSET = 1000.0
-
 
 @dataclass(frozen=True, eq=False)
 class SnapOff:
@@ -185,9 +181,9 @@ def brent_tolerance(path: LoadingPath, tolerance: float, force_tolerance: float 
     """Brent's tolerance on the approach of a smooth maximum: ``tolerance``, or with
     ``force_tolerance`` (relative to the largest tension) the distance from the maximum at
     which the parabola through the largest recorded tension and its two neighbours has lost
-    that fraction, if larger.  :func:`_refine_smooth_maximum`'s Brent ends with the minimum
-    within 2/3 of this tolerance of the best point, so on that parabola the force found is
-    within 4/9 of the force tolerance."""
+    that fraction, if larger.  scipy's bounded Brent ends with the minimum within 2/3 of its
+    ``xatol`` of the best point, so on that parabola the force found is within 4/9 of the
+    tolerance."""
     j = path.largest.index
     if force_tolerance is None or j < 1 or j + 1 >= len(path):
         return tolerance
@@ -208,27 +204,15 @@ def _refine_smooth_maximum(
 ) -> tuple[float, float]:
     """Brent on F(d) between the neighbours of the largest recorded tension, each trial warm-
     started from that state, to :func:`brent_tolerance`: (F, d) at the minimum found.  The
-    trials join the loading path in loading order, between those neighbours.
-
-    Brent starts from the largest recorded tension itself, whose force a trial there would
-    repeat (it starts at its own minimum), so the first trial already narrows the bracket;
-    scipy's bounded variant would spend its first trial on a golden-section point, blind to
-    it.  The search runs in ``y = OFFSET + (d - lower) / (upper - lower)``: scipy's Brent
-    tests convergence relative to ``y`` plus an absolute ``1e-11``, and in that variable the
-    test is the tolerance in d, unit for unit, whatever the scene's units."""
+    trials join the loading path in loading order, between those neighbours."""
     largest = path.largest
     # force_maximum calls this only for a recorded state with neighbours on both sides
     assert largest.U is not None and largest.before is not None and largest.after is not None
-    j = largest.index
     lower_d, upper_d = sorted((largest.before, largest.after[0]))
-    width = upper_d - lower_d
     xatol = brent_tolerance(path, tolerance, force_tolerance)
-    extra: list[tuple[float, float, float]] = []
-    start = largest.U
-    known = {path.approach[k]: path.force[k] for k in (j - 1, j, j + 1)}
+    extra = []
 
-    def approach(y: float) -> float:
-        return lower_d + (y - BRENT_OFFSET) * width
+    start = largest.U
 
     def force_at(x):
         m = eq.minimum(start, x, True)
@@ -238,25 +222,8 @@ def _refine_smooth_maximum(
             path.callback(*extra[-1])
         return F_x
 
-    y_mid = BRENT_OFFSET + (path.approach[j] - lower_d) / width
-    F_mid, F_ends = known[path.approach[j]], (known[lower_d], known[upper_d])
-    if BRENT_OFFSET < y_mid < BRENT_OFFSET + 1 and F_mid < min(F_ends):
-        ends = {BRENT_OFFSET: F_ends[0], BRENT_OFFSET + 1.0: F_ends[1], y_mid: F_mid}
-
-        def force_of_y(y):
-            return ends[y] if y in ends else force_at(approach(y))
-
-        # Brent's test is tol * |y| + 1e-11 with |y| within 1 / OFFSET of OFFSET: a third of
-        # xatol (scaled) as scipy's bounded variant, held at the bracket's far end
-        tol = xatol / width / 3.0 / (BRENT_OFFSET + 1.0)
-        r = optimize.minimize_scalar(
-            force_of_y, bracket=(BRENT_OFFSET, y_mid, BRENT_OFFSET + 1.0), method="brent", tol=tol
-        )
-        F = float(r.fun)
-        d = path.approach[j] if r.x == y_mid else approach(float(r.x))
-    else:  # a tie with a neighbour: no interior point to start from
-        r = optimize.minimize_scalar(force_at, bounds=(lower_d, upper_d), method="bounded", options={"xatol": xatol})
-        F, d = float(r.fun), float(r.x)
+    r = optimize.minimize_scalar(force_at, bounds=(lower_d, upper_d), method="bounded", options={"xatol": xatol})
+    j = largest.index
     seg = sorted(
         [(path.approach[k], path.force[k], path.contact_area[k]) for k in (j - 1, j, j + 1)] + extra,
         key=lambda t: t[0],
@@ -265,7 +232,7 @@ def _refine_smooth_maximum(
     path.approach[j - 1 : j + 2] = [t[0] for t in seg]
     path.force[j - 1 : j + 2] = [t[1] for t in seg]
     path.contact_area[j - 1 : j + 2] = [t[2] for t in seg]
-    return F, d
+    return float(r.fun), float(r.x)
 
 
 def force_maximum(

@@ -15,7 +15,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import pytest
-from scipy import optimize
 
 from bem_energy import peak
 from bem_energy.continuation import LoadingPath
@@ -281,80 +280,3 @@ def test_snap_off_trials_start_from_the_secant_through_the_last_two_attached_sta
     branch.starts.clear()
     peak.locate_snap_off(branch, path, d_att, branch.state(d_att), d_det, branch.state(d_det), True, tolerance=TOL)
     assert np.array_equal(branch.starts[0][1], branch.state(d_att).U)
-
-
-def _bracketed_branch(F, scale=1.0, force_scale=1.0):
-    """A pull over ``F`` (approach and force scaled by ``scale`` and ``force_scale``) whose
-    smooth maximum is bracketed by continuation steps, and its path (before refinement)."""
-    branch = Branch(lambda d: force_scale * F(d / scale), -1.3 * scale)
-    path = LoadingPath(branch)
-    d = -0.6 * scale
-    while True:
-        m = branch.state(d)
-        path.record(d, m)
-        if len(path) > 2 and path.largest.after is not None and path.largest.index < len(path) - 1:
-            if path.force[-1] > path.largest.force:
-                break
-        d -= STEP * scale
-    return branch, path
-
-
-def test_brent_starts_from_the_largest_recorded_tension():
-    """The refinement's Brent takes the largest recorded tension as its first point (its
-    force is known: a trial there would start at its own minimum), so it never repeats that
-    trial and needs no more trials than scipy's bounded Brent on the same bracket and
-    tolerance, blind to it, and fewer over maxima at several places in the bracket; both end
-    within 4/9 of the force tolerance of the maximum (1, at d = -0.98 + shift; a cubic term
-    keeps the parabolic steps from being exact)."""
-    ftol = 3e-4
-    counts = []
-    for shift in (0.0, 0.011, -0.017, 0.023):
-
-        def bent(d, shift=shift):
-            x = d + 0.98 - shift
-            return -(1.0 - 3.0 * x**2 + 0.5 * x**3)
-
-        branch, path = _bracketed_branch(bent)
-        j = path.largest.index
-        lower, upper = sorted((path.approach[j - 1], path.approach[j + 1]))
-        d_largest = path.approach[j]
-        xatol = peak.brent_tolerance(path, TOL, ftol)
-        n0 = len(branch.trials)
-        p = peak.force_maximum(branch, path, None, True, tolerance=TOL, force_tolerance=ftol)
-        ours = branch.trials[n0:]
-        blind = Branch(bent, -1.3)
-        r = optimize.minimize_scalar(
-            lambda d, b=blind: b.force(b.minimum(None, d, True)),
-            bounds=(lower, upper),
-            method="bounded",
-            options={"xatol": xatol},
-        )
-        assert p.kind == "refined"
-        assert 1.0 - 4 / 9 * ftol <= p.force <= 1.0 + 1e-12
-        assert 1.0 - 4 / 9 * ftol <= -r.fun
-        assert d_largest not in ours
-        assert len(ours) <= len(blind.trials)
-        counts.append((len(ours), len(blind.trials)))
-    assert sum(c[0] for c in counts) < sum(c[1] for c in counts), counts
-
-
-@pytest.mark.parametrize("scale", [1e-30, 1e-8, 1e8, 1e30])
-def test_brent_refinement_is_unit_invariant(scale):
-    """The same pull in other units (approach and force times ``scale``) makes the same trials,
-    scaled, and finds the same maximum, scaled: scipy's Brent tests convergence against an
-    absolute 1e-11 as well, which the refinement's dimensionless variable keeps out of it."""
-
-    def bent(d):
-        x = d + 0.98 - 0.011
-        return -(1.0 - 3.0 * x**2 + 0.5 * x**3)
-
-    found = []
-    for s in (1.0, scale):
-        branch, path = _bracketed_branch(bent, s, s)
-        n0 = len(branch.trials)
-        p = peak.force_maximum(branch, path, None, True, tolerance=TOL * s, force_tolerance=3e-4)
-        found.append((p.force / s, p.approach / s, [t / s for t in branch.trials[n0:]]))
-    (F1, d1, t1), (F2, d2, t2) = found
-    assert len(t1) == len(t2) and len(t1) > 0
-    assert F2 == pytest.approx(F1, rel=1e-9) and d2 == pytest.approx(d1, rel=1e-9)
-    np.testing.assert_allclose(t2, t1, rtol=1e-9)
