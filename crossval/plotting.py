@@ -4,7 +4,15 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["plot_curve", "plot_contact", "plot_surface", "plot_error_vs_time", "plot_agreement", "METHOD_COLOURS"]
+__all__ = [
+    "plot_curve",
+    "plot_contact",
+    "plot_surface",
+    "plot_error_vs_time",
+    "plot_agreement",
+    "resolution_unit",
+    "METHOD_COLOURS",
+]
 
 #: one colour per method, the same in every figure
 METHOD_COLOURS = {"bem_griffith": "C0", "bem_energy": "C1", "fem_reference": "C2"}
@@ -92,27 +100,70 @@ def _decade_limits(values):
     return 10.0**lo, 10.0**hi
 
 
-def _resolution_meaning(study, method) -> str:
+def resolution_unit(study, method) -> str:
+    """What ``method``'s resolution counts on the study's scene, as the error panel's legend
+    names the numbers written beside its runs (e.g. ``"elements/radius"``).
+
+    Parameters
+    ----------
+    study : crossval.study.Study
+        The study whose scene decides the meaning (the energy BEM's differs between a
+        zero-range sequence and a finite range).
+    method : str
+        A key of :data:`crossval.METHODS`.
+
+    Returns
+    -------
+    str
+        The method's own measure, without the generic "N" the methods' axis labels share.
+    """
     from .methods import METHODS
 
-    return METHODS[method].resolution(study.scene).label
+    return METHODS[method].resolution(study.scene).label.removeprefix("N:").strip()
+
+
+#: the smallest wall time the panel places a run at: a log axis has no zero, and a run that
+#: recorded none (an edited or foreign cache entry) must still be drawn
+_MIN_TIME_S = 1e-3
 
 
 def plot_error_vs_time(study, ax=None, *, notes=None):
-    """One line per method: the relative error of the studied quantity against wall time, each
-    run's resolution written next to it, or against resolution with each run's time written
-    next to it when the timings mean nothing:
-    runs shorter than ``study.TIME_NOISE_FLOOR_S``, or times not growing with resolution.
+    """One line per method: the relative error of the studied quantity against each run's
+    wall time, the run's resolution written beside it in the method's own measure (named in
+    the legend).
+
+    Every panel has the same axis, wall time, because resolutions are not comparable across
+    methods (elements per radius, elements per process zone, 1/grading): a shared resolution
+    axis would place runs side by side whose numbers mean different things.  Where timings
+    are noise the panel says so instead of changing axis: runs shorter than
+    ``study.TIME_NOISE_FLOOR_S`` sit in a hatched band, and a method whose time does not grow
+    with its resolution says so in its legend entry.
 
     The error is against ``study.reference_info``; its error bar is drawn as a grey band
     (errors inside it are not resolved and are drawn hollow).  The axis is the error's
     magnitude; a marker points up for a run above the reference and down for one below it, so
     that a sign change (a dip through zero) shows.  ``notes`` ({method: text}) adds a word to a
-    method's legend entry, e.g. that its errors are calibration residuals.  Without a reference the panel
-    says so instead of plotting."""
+    method's legend entry, e.g. that its errors are calibration residuals.  Without a reference
+    the panel says so instead of plotting.
+
+    Parameters
+    ----------
+    study : crossval.study.Study
+        The rows to plot and the reference they are measured against.
+    ax : matplotlib.axes.Axes, optional
+        The axes to draw on; a new figure's by default.
+    notes : dict, optional
+        Method -> text appended to its legend entry.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn on.
+    """
     import textwrap
 
-    from matplotlib.ticker import FixedLocator, FuncFormatter, LogLocator, NullFormatter, NullLocator
+    from matplotlib.lines import Line2D
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter, NullLocator
 
     from .study import TIME_NOISE_FLOOR_S
 
@@ -144,29 +195,35 @@ def plot_error_vs_time(study, ax=None, *, notes=None):
         m: sorted((r for r in rows if r.method == m), key=lambda r: r.resolution)
         for m in dict.fromkeys(r.method for r in rows)
     }
-    # a time axis only where timings mean something: long enough, and growing with resolution
-    timed = min(r.wall_time_s for r in rows) >= TIME_NOISE_FLOOR_S and all(
-        np.all(np.diff([r.wall_time_s for r in mr]) > 0) for mr in by_method.values()
-    )
+
+    def when(r):
+        t = r.wall_time_s
+        return max(t, _MIN_TIME_S) if np.isfinite(t) else _MIN_TIME_S
+
     for m, mr in by_method.items():
-        x = [r.wall_time_s if timed else r.resolution for r in mr]
+        x = [when(r) for r in mr]
         e = [max(r.error, 1e-12) for r in mr]
-        label = f"{m} ({_resolution_meaning(study, m)})"
+        label = f"{m}; beside each run: {resolution_unit(study, m)}"
+        if len(mr) > 1 and np.any(np.diff([r.wall_time_s for r in mr]) <= 0):
+            label += "; its time does not grow with resolution (noise)"
         if notes and notes.get(m):
             label += f"; {notes[m]}"
+        # wrapped: the legend sits beside the panel and would squeeze the figure's other panels
+        label = textwrap.fill(label, 40, subsequent_indent="  ")
+        # the line joins a method's runs in order of resolution, so a time that falls as the
+        # resolution grows shows as the line turning back
         (line,) = ax.plot(x, e, "-", lw=1, label=label, color=METHOD_COLOURS.get(m))
         for i, (xi, r, ei) in enumerate(zip(x, mr, e, strict=True)):
             # the axis is the magnitude: the marker says on which side of the reference the run lies
             marker = "v" if r.signed_error < 0 else "^"
             ax.plot(xi, ei, marker, color=line.get_color(), ms=5, mfc=line.get_color() if r.error > unc else "white")
-            # the axis the run is not placed on is written next to it: its time, or its resolution;
             # above and below the marker in turn, so that neighbours' labels do not overprint
             ax.annotate(
-                f"{r.wall_time_s:.2g} s" if not timed else f"N = {r.resolution:.3g}",
+                f"{r.resolution:.3g}",
                 (xi, ei),
                 textcoords="offset points",
                 xytext=(4, 3) if i % 2 == 0 else (4, -9),
-                fontsize=6,
+                fontsize=7,
                 color=line.get_color(),
             )
     ax.set_xscale("log")
@@ -180,28 +237,28 @@ def plot_error_vs_time(study, ax=None, *, notes=None):
     ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
     # with a single decade the 2 and 5 ticks carry the scale too
     ax.yaxis.set_minor_formatter(FuncFormatter(lambda v, _: f"{v:g}") if hi / lo <= 10 else NullFormatter())
-    xs = sorted({r.wall_time_s if timed else r.resolution for r in rows})
-    xpad = 1.25
-    ax.set_xlim(xs[0] / xpad, xs[-1] * xpad * (1.6 if not timed else 1.0))
-    if timed:
-        ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
-        ax.xaxis.set_minor_locator(LogLocator(base=10, subs=(2, 5)))
-        # within about a decade a single major tick would be the axis' only number
-        ax.xaxis.set_minor_formatter(FuncFormatter(lambda v, _: f"{v:g}") if xs[-1] / xs[0] < 20 else NullFormatter())
-        ax.set_xlabel("wall time [s]")
-    else:
-        ax.xaxis.set_major_locator(FixedLocator(xs))
-        ax.xaxis.set_minor_locator(NullLocator())
-        ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:.3g}"))
-        ax.tick_params(axis="x", labelsize=7, labelrotation=45)
-        ax.set_xlabel(
-            f"resolution N; wall time noted at each run (timings under {TIME_NOISE_FLOOR_S:g} s, "
-            "or not growing with N, are noise)",
-            fontsize=8,
+    ts = sorted(when(r) for r in rows)
+    # room on the right for the last run's label
+    x0, x1 = ts[0] / 1.25, ts[-1] * 1.6
+    ax.set_xlim(x0, x1)
+    if ts[0] < TIME_NOISE_FLOOR_S:
+        ax.axvspan(
+            x0,
+            min(TIME_NOISE_FLOOR_S, x1),
+            facecolor="none",
+            edgecolor="0.85",
+            hatch="///",
+            lw=0,
+            zorder=0,
+            label=f"under {TIME_NOISE_FLOOR_S:g} s: timings are noise",
         )
+    ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    ax.xaxis.set_minor_locator(LogLocator(base=10, subs=(2, 5)))
+    # with fewer than two powers of ten in view the 2 and 5 ticks carry the scale too
+    decades = np.floor(np.log10(x1)) - np.ceil(np.log10(x0)) + 1
+    ax.xaxis.set_minor_formatter(FuncFormatter(lambda v, _: f"{v:g}") if decades < 2 else NullFormatter())
+    ax.set_xlabel("wall time of the run [s]; beside each run: its resolution, in its method's own measure", fontsize=8)
     ax.set_ylabel(f"relative error of {study.quantity}")
-    from matplotlib.lines import Line2D
-
     handles, _ = ax.get_legend_handles_labels()
     handles += [
         Line2D([], [], ls="none", marker=m, color="0.3", ms=5, label=f"{side} the reference")

@@ -21,10 +21,10 @@ from .compare import check_results, reference_source, reference_values, same_gri
 from .jsonio import dumps as json_dumps
 from .methods import METHODS, applicable_methods
 from .runner import Job, run_jobs
-from .study import study
+from .study import TIME_NOISE_FLOOR_S, study
 from .suite import SUITE
 
-__all__ = ["Report", "report", "report_jobs", "QUICK", "FULL"]
+__all__ = ["Report", "report", "report_jobs", "QUICK", "FULL", "ERROR_PANEL_CAPTION"]
 
 #: resolutions per method for the quick (< 3 min on 2 cores) and full report
 #: (bem_energy in the zero-range limit: elements per process zone)
@@ -152,6 +152,21 @@ UNITS_NOTE = (
     "dimensionless (face radius or side of order 1, E* and w of order 1; `crossval scene check NAME` "
     "prints a scene with its closed-form scales).  Tension is negative: F_A is the largest tension, "
     "d at F_A the approach there, 'initial area' the contact area when the pull starts."
+)
+
+
+#: how to read the error panel of every scene (the figure's right-hand panel)
+ERROR_PANEL_CAPTION = (
+    "The right-hand panel of each scene: the relative error of every run against its wall time, "
+    "one line per method joining its runs in order of resolution; a marker points up for a run above "
+    "the reference and down for one below it. The number beside each run is its resolution in its "
+    "method's own measure, named in the legend (elements per radius for the Griffith BEM, elements per "
+    "process zone for the energy BEM's zero-range sequence, 1/grading for the FEM): these numbers do not "
+    "compare across methods, so every panel shares one axis, wall time. Runs in the hatched band took "
+    f"under {TIME_NOISE_FLOOR_S:g} s, where start-up, caching and the machine's other load weigh more "
+    "than the solve: their errors are measured, their positions in time are noise. A legend entry says "
+    "so where a method's time does not grow with its resolution. A cached run keeps the time of the "
+    "solve that computed it."
 )
 
 
@@ -504,7 +519,8 @@ def report(
         )
         + "; "
         f"{wall:.0f} s.</p><h2>Agreement</h2><img src='data:image/png;base64,{agreement_png}' alt='agreement'>"
-        f"<p>{html.escape(AGREEMENT_CAPTION)}</p><p>{html.escape(UNITS_NOTE)}</p>" + "".join(sections) + extreme_html
+        f"<p>{html.escape(AGREEMENT_CAPTION)}</p><p>{html.escape(UNITS_NOTE)}</p>"
+        f"<p>{html.escape(ERROR_PANEL_CAPTION)}</p>" + "".join(sections) + extreme_html
     )
     _write_atomic(out / "index.html", page.encode())
     _write_atomic(out / "results.json", json_dumps(data, indent=1).encode())

@@ -13,6 +13,7 @@ import subprocess
 import tempfile
 from html.parser import HTMLParser
 
+import matplotlib.colors
 import matplotlib.image
 import numpy as np
 import pytest
@@ -267,40 +268,104 @@ def _labelled_ticks(axis):
     ]
 
 
-@pytest.mark.parametrize("times", [(0.03, 0.05, 0.2), (0.6, 1.4, 3.0)])
-def test_error_panel_labels_its_axes_and_its_legend_hides_no_point(times):
-    """Errors within one decade (a few per cent) still get numbers on both axes, and the
-    legend sits outside the data; short runs are plotted against resolution instead."""
+def _panel(rows, *, notes=None, scene="kendall_circle"):
+    """The error panel of ``rows`` against a closed-form reference of 1, drawn."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     from crossval import plotting
-    from crossval.study import ErrorReference, Study, StudyRow
+    from crossval.study import ErrorReference, Study
     from crossval.suite import SUITE
 
     ref = ErrorReference(1.0, "Kendall", "closed form")
-    rows = tuple(
+    st = Study(SUITE[scene], "pulloff_force", 1.0, ref.name, tuple(rows), reference_info=ref)
+    fig, ax = plt.subplots(layout="constrained")
+    assert plotting.plot_error_vs_time(st, ax, notes=notes) is ax
+    fig.canvas.draw()
+    return fig, ax
+
+
+def _markers(ax):
+    """(x, y, marker) of each run's marker: the one-point lines the panel draws per run."""
+    return [
+        (float(line.get_xdata()[0]), float(line.get_ydata()[0]), line.get_marker())
+        for line in ax.lines
+        if len(line.get_xdata()) == 1
+    ]
+
+
+def _legend_texts(ax):
+    # entries are wrapped to fit beside the panel: compare their words, not their line breaks
+    return [" ".join(t.get_text().split()) for t in ax.get_legend().get_texts()]
+
+
+@pytest.mark.parametrize("times", [(0.03, 0.05, 0.2), (0.6, 1.4, 3.0)])
+def test_error_panel_labels_its_axes_and_its_legend_hides_no_point(times):
+    """Errors within one decade (a few per cent) still get numbers on both axes, and the
+    legend sits outside the data; short runs and long ones are both placed at their wall
+    time (one axis in every panel), each with its resolution written beside it."""
+    import matplotlib.pyplot as plt
+
+    from crossval.study import StudyRow
+
+    rows = [
         StudyRow("bem_griffith", n, t, 1 + e, e, e)
         for n, t, e in zip((8, 12, 16), times, (0.03, 0.02, 0.012), strict=True)
-    )
-    st = Study(SUITE["kendall_circle"], "pulloff_force", 1.0, ref.name, rows, reference_info=ref)
-    fig, ax = plt.subplots(layout="constrained")
-    plotting.plot_error_vs_time(st, ax)
-    fig.canvas.draw()
+    ]
+    fig, ax = _panel(rows)
     assert len(_labelled_ticks(ax.yaxis)) >= 2 and len(_labelled_ticks(ax.xaxis)) >= 2
-    assert ax.get_xlabel().startswith("wall time") == (min(times) >= 0.5)
-    # whichever axis a run is not placed on is written next to it
+    assert ax.get_xlabel().startswith("wall time")
+    assert sorted(x for x, _, _ in _markers(ax)) == pytest.approx(times)
     written = {t.get_text() for t in ax.texts}
-    if min(times) >= 0.5:
-        assert {"N = 8", "N = 12", "N = 16"} <= written, written
-    else:
-        assert {f"{t:.2g} s" for t in times} <= written, written
+    assert {"8", "12", "16"} <= written, written
     legend = ax.get_legend().get_window_extent()
     points = ax.transData.transform([(line.get_xdata()[0], line.get_ydata()[0]) for line in ax.lines])
     assert not any(legend.contains(x, y) for x, y in points)
     assert not legend.overlaps(ax.get_window_extent())
+    # short runs are not moved to another axis: the panel marks their timings as noise
+    noise = [t for t in _legend_texts(ax) if "timings are noise" in t]
+    assert bool(noise) == (min(times) < 0.5), _legend_texts(ax)
+    plt.close(fig)
+
+
+def test_error_panel_never_shares_a_resolution_axis_between_methods():
+    """Elements per radius, elements per process zone and 1/grading are different measures: each
+    method's runs sit at their wall times, never at their resolutions, and the legend names what
+    the number beside each run of that method counts."""
+    import matplotlib.pyplot as plt
+
+    from crossval.study import StudyRow
+
+    runs = {
+        "bem_griffith": [(16, 0.06, 0.02), (24, 0.1, 0.001), (32, 0.09, 0.005)],
+        "bem_energy": [(1, 0.6, 0.014), (2, 2.5, 0.008)],
+        "fem_reference": [(0.5, 1.6, 6e-6), (1, 3.2, 3e-6)],
+    }
+    rows = [StudyRow(m, n, t, 1 + e, e, e) for m, rs in runs.items() for n, t, e in rs]
+    fig, ax = _panel(rows)
+    assert sorted(x for x, _, _ in _markers(ax)) == pytest.approx(sorted(t for rs in runs.values() for _, t, _ in rs))
+    assert "resolution" not in ax.get_xlabel().split(";")[0]
+    # each run's resolution is written in its method's colour beside it
+    from crossval.plotting import METHOD_COLOURS
+
+    written = {(t.get_text(), t.get_color()) for t in ax.texts}
+    for m, rs in runs.items():
+        colour = matplotlib.colors.to_rgba(METHOD_COLOURS[m])
+        for n, _, _ in rs:
+            assert any(text == f"{n:g}" and matplotlib.colors.to_rgba(c) == colour for text, c in written), (m, n)
+    legend = _legend_texts(ax)
+    for m, unit in (
+        ("bem_griffith", "elements/radius"),
+        ("bem_energy", "elements/process zone"),
+        ("fem_reference", "1/grading"),
+    ):
+        assert any(t.startswith(m) and f"beside each run: {unit}" in t for t in legend), (m, legend)
+    # the Griffith runs' times do not grow with their resolution: its entry says the times are noise
+    (griffith,) = [t for t in legend if t.startswith("bem_griffith")]
+    assert "does not grow with resolution" in griffith
+    assert not any("does not grow" in t for t in legend if not t.startswith("bem_griffith"))
     plt.close(fig)
 
 
@@ -308,27 +373,33 @@ def test_error_panel_shows_on_which_side_of_the_reference_each_run_lies():
     """The axis is the error's magnitude; a run below the reference points down, one above
     points up, so that errors crossing zero (a dip on the log axis) are told apart from
     errors that fall."""
-    import matplotlib
-
-    matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from crossval import plotting
-    from crossval.study import ErrorReference, Study, StudyRow
-    from crossval.suite import SUITE
+    from crossval.study import StudyRow
 
-    ref = ErrorReference(1.0, "Kendall", "closed form")
     signed = (0.03, -0.002, 0.004)
-    rows = tuple(StudyRow("bem_griffith", n, 0.1, 1 + e, abs(e), e) for n, e in zip((8, 12, 16), signed, strict=True))
-    st = Study(SUITE["kendall_circle"], "pulloff_force", 1.0, ref.name, rows, reference_info=ref)
-    fig, ax = plt.subplots()
-    plotting.plot_error_vs_time(st, ax, notes={"bem_griffith": "calibration residual"})
-    drawn = {float(line.get_xdata()[0]): line.get_marker() for line in ax.lines if len(line.get_xdata()) == 1}
-    assert drawn == {8.0: "^", 12.0: "v", 16.0: "^"}
-    legend = [t.get_text() for t in ax.get_legend().get_texts()]
+    times = (0.1, 0.2, 0.4)
+    rows = [
+        StudyRow("bem_griffith", n, t, 1 + e, abs(e), e) for n, t, e in zip((8, 12, 16), times, signed, strict=True)
+    ]
+    fig, ax = _panel(rows, notes={"bem_griffith": "calibration residual"})
+    drawn = {x: marker for x, _, marker in _markers(ax)}
+    assert drawn == {0.1: "^", 0.2: "v", 0.4: "^"}
+    legend = _legend_texts(ax)
     assert {"above the reference", "below the reference"} <= set(legend)
     assert any(t.startswith("bem_griffith") and t.endswith("; calibration residual") for t in legend), legend
     plt.close(fig)
+
+
+def test_page_explains_the_error_panels_axis_and_labels(rendered):
+    """The reader is told once what the panels' axis is and what the numbers beside runs mean."""
+    from crossval.report import ERROR_PANEL_CAPTION
+
+    _, out = rendered
+    page = html.unescape((out / "index.html").read_text())
+    assert ERROR_PANEL_CAPTION in page
+    for words in ("wall time", "elements per radius", "elements per process zone", "1/grading", "hatched"):
+        assert words in ERROR_PANEL_CAPTION
 
 
 def test_scene_tables_name_each_reference_value_and_show_no_pull_off_for_a_press(rendered):
