@@ -143,6 +143,61 @@ def decode_result(text: str, arrays) -> Result:
     return out
 
 
+class _Unusable(Exception):
+    """Why an entry on disk is a miss, worded for the warning."""
+
+
+#: how a zip archive (and so an ``.npz`` file) starts: a file header, or an empty archive's end record
+_ZIP_MAGIC = (b"PK\x03\x04", b"PK\x05\x06")
+
+_DAMAGED = (OSError, EOFError, ValueError, zipfile.BadZipFile)
+
+
+def _read_entry(path: Path, key: str) -> Result:
+    """The result in the entry ``path``, raising :class:`_Unusable` with the reason it is not one.
+
+    The file is checked to be a zip archive before numpy reads it: ``np.load`` sniffs any other
+    bytes as a pickle and, refusing it, would have the warning speak of pickled data and of
+    loading the file unsafely, where the plain fact is that the file is no cache archive.
+    """
+    try:
+        with open(path, "rb") as f:
+            head = f.read(4)
+    except OSError as exc:
+        raise _Unusable(f"which cannot be opened ({exc.strerror or exc})") from exc
+    if not head.startswith(_ZIP_MAGIC):
+        what = "the file is empty" if not head else "it does not start as a zip archive does"
+        raise _Unusable(f"which is not a readable cache archive (not an .npz file: {what})")
+    try:
+        with np.load(path, allow_pickle=False) as z:
+            if "__meta__" not in z.files:
+                raise _Unusable("an .npz archive without a cache entry's metadata (not written by this cache)")
+            raw = bytes(z["__meta__"])
+            try:
+                meta = json.loads(raw.decode())
+            except (UnicodeDecodeError, ValueError) as exc:
+                raise _Unusable(f"a cache archive whose metadata is not readable ({exc})") from exc
+            if not isinstance(meta, dict):
+                raise _Unusable("a cache archive whose metadata is not a cache entry's")
+            if meta.get("format") != FORMAT:
+                raise _Unusable(f"a cache entry of format {meta.get('format')!r} (this version reads format {FORMAT})")
+            if meta.get("key") != key:
+                raise _Unusable(f"a cache entry stored under another key ({meta.get('key')!r})")
+            try:
+                return decode_result(meta["result"], z)
+            except (KeyError, TypeError, ValueError) as exc:
+                raise _Unusable(f"a cache entry whose result cannot be decoded ({type(exc).__name__}: {exc})") from exc
+    except _DAMAGED as exc:
+        # a zip's start but no readable archive behind it: cut short by a crash or a full disk.
+        # zipfile's own words, "File is not a zip file", would deny what the first bytes showed
+        detail = (
+            "its zip directory is missing or unreadable"
+            if isinstance(exc, zipfile.BadZipFile)
+            else f"{type(exc).__name__}: {exc}"
+        )
+        raise _Unusable(f"a damaged cache archive, truncated or corrupt ({detail})") from exc
+
+
 class ResultCache:
     """``get``/``put`` results by key; in memory for the object's life, and on disk unless
     ``directory`` is None."""
@@ -162,6 +217,21 @@ class ResultCache:
         return self.directory / f"{key}.npz"
 
     def get(self, key: str) -> Result | None:
+        """The result stored under ``key``, or None on a miss.
+
+        An entry on disk that cannot be used (not an ``.npz`` archive, a damaged one, another
+        format or another key) is a miss, with one warning that says which.
+
+        Parameters
+        ----------
+        key : str
+            A key from :meth:`key`.
+
+        Returns
+        -------
+        contact_scene.Result or None
+            The stored result; None when there is none to use, so that the caller recomputes it.
+        """
         if key in self._memory:
             return self._memory[key]
         if self.directory is None:
@@ -170,15 +240,9 @@ class ResultCache:
         if not path.exists():
             return None
         try:
-            with np.load(path, allow_pickle=False) as z:
-                meta = json.loads(bytes(z["__meta__"]).decode())
-                if meta.get("format") != FORMAT or meta.get("key") != key:
-                    raise ValueError(f"entry of format {meta.get('format')!r} for key {meta.get('key')!r}")
-                result = decode_result(meta["result"], z)
-        except (OSError, ValueError, KeyError, TypeError, EOFError, zipfile.BadZipFile, UnicodeDecodeError) as exc:
-            log.warning(
-                "crossval cache: ignoring unreadable entry %s (%s: %s); recomputing", path.name, type(exc).__name__, exc
-            )
+            result = _read_entry(path, key)
+        except _Unusable as exc:
+            log.warning("crossval cache: ignoring %s, %s; recomputing it", path.name, exc)
             return None
         self._memory[key] = result
         return result

@@ -98,8 +98,26 @@ def test_cache_round_trip_keeps_every_field(tmp_path):
         assert np.array_equal(a.pressure, b.pressure) and a.origin == b.origin
 
 
-@pytest.mark.parametrize("damage", ["truncate", "text", "other_key", "pickle"])
+NOT_AN_ARCHIVE = "is not a readable cache archive (not an .npz file"
+
+#: damage -> what the warning must say, so that each reason is told apart from the others
+DAMAGE_REASONS = {
+    "truncate": "a damaged cache archive, truncated or corrupt",
+    "text": NOT_AN_ARCHIVE,
+    "hello": NOT_AN_ARCHIVE,
+    "random": NOT_AN_ARCHIVE,
+    "empty": NOT_AN_ARCHIVE,
+    "pickle": NOT_AN_ARCHIVE,
+    "no_meta": "an .npz archive without a cache entry's metadata",
+    "old_format": "a cache entry of format 0 (this version reads format",
+    "other_key": "a cache entry stored under another key",
+}
+
+
+@pytest.mark.parametrize("damage", list(DAMAGE_REASONS))
 def test_damaged_cache_entry_is_a_miss_with_one_warning(tmp_path, monkeypatch, caplog, damage):
+    from crossval import cache as cache_module
+
     cache = ResultCache(tmp_path)
     (first,) = run_jobs(JOBS[:1], cache=cache)
     key = ResultCache.key(JOBS[0].scene, JOBS[0].method, JOBS[0].resolution)
@@ -108,6 +126,20 @@ def test_damaged_cache_entry_is_a_miss_with_one_warning(tmp_path, monkeypatch, c
         path.write_bytes(path.read_bytes()[:200])
     elif damage == "text":
         path.write_text("not a cache entry")
+    elif damage == "hello":
+        path.write_bytes(b"hello")
+    elif damage == "random":
+        # bytes that no format claims; seeded, and never a zip's first bytes
+        path.write_bytes(b"\x00" + np.random.default_rng(0).bytes(4096))
+    elif damage == "empty":
+        path.write_bytes(b"")
+    elif damage == "no_meta":
+        with open(path, "wb") as f:
+            np.savez(f, x=np.arange(3.0))
+    elif damage == "old_format":
+        with monkeypatch.context() as m:
+            m.setattr(cache_module, "FORMAT", 0)
+            ResultCache(tmp_path).put(key, first)
     elif damage == "other_key":
         other = ResultCache.key(JOBS[1].scene, JOBS[1].method, JOBS[1].resolution)
         ResultCache(tmp_path).put(other, first)
@@ -127,6 +159,11 @@ def test_damaged_cache_entry_is_a_miss_with_one_warning(tmp_path, monkeypatch, c
     assert len(calls) == 1, "a damaged entry must be recomputed"
     warnings = [r for r in caplog.records if r.levelno == logging.WARNING]
     assert len(warnings) == 1 and path.name in warnings[0].getMessage()
+    message = warnings[0].getMessage()
+    assert DAMAGE_REASONS[damage] in message and message.endswith("recomputing it"), message
+    # numpy's words for any bytes that are not an archive speak of pickled data and advise
+    # loading the file unsafely: advice a user must never be given about a cache entry
+    assert "pickle" not in message and "unsafe" not in message, message
     _same(again, first)
     monkeypatch.setattr(runner, "_run", lambda job: pytest.fail("the entry was not overwritten"))
     _same(ResultCache(tmp_path).get(key), first)
