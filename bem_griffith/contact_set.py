@@ -61,6 +61,11 @@ class ContactSolution:
         (``bem_griffith.driver.early_decision``) or the face has no free cell.  Such a state only
         passes on to the next set of its cascade, whose cells lie in the window; a cascade never
         returns one (``gap_coefficients`` refuses it).
+    at_approach
+        The approach d at which a curved face's passing set was decided (None otherwise):
+        ``pressure_per_approach`` then holds p / d and the profile parts are zero, so that
+        :meth:`pressure`, :meth:`displacement` and the gaps are exact at d only.  Such a state
+        only passes on to the next set of its cascade at d; a cascade never returns one.
     """
 
     contact: np.ndarray
@@ -72,6 +77,7 @@ class ContactSolution:
     residual: float
     converged: bool
     displacement_in_window: bool = False
+    at_approach: float | None = None
 
     def pressure(self, approach: float) -> np.ndarray:
         """p = d x1 - xh on S (compressive > 0)."""
@@ -107,6 +113,7 @@ def solve_contact_set(
     warm_start: ContactSolution | None,
     counters: WorkCounters,
     decide: Decision | None = None,
+    approach: float | None = None,
 ) -> ContactSolution:
     """Solve C_SS x1 = 1 and (curved faces) C_SS xh = h on the contact set by preconditioned
     CG, warm-started from a neighbouring set's solution; on a smaller window of the grid when
@@ -118,7 +125,13 @@ def solve_contact_set(
     the energy norm of the error (``Problem.inverse_diagonal``, ``Problem.self_influence``) with
     the Fourier preconditioner, else ||r||_2 / eigenvalue_floor (``Problem.eigenvalue_floor``,
     ``Problem.kernel_norm``).  The solution is then exact only to those bounds, and counted as
-    decided, not as converged to rtol."""
+    decided, not as converged to rtol.
+
+    On a curved face ``decide`` needs the cascade's ``approach`` d: the pressure there,
+    p = d x1 - xh, is one solve, C_SS y = 1 - h / d with p = d y, and ``decide`` reads y as it
+    reads x1 on a flat face.  A decided set is returned as y with no profile part, exact at
+    d only, which is all a passing set of a cascade at d is used for; otherwise x1 and xh are
+    solved as without ``decide``, xh warm-started from d (x1 - y)."""
     window = window_for(problem, contact)
     if window is None:
         operator, contact_in_window, inverse = problem.operator, contact, problem.inverse_symbol
@@ -188,7 +201,9 @@ def solve_contact_set(
     early_stop = None
     decided_image: list[np.ndarray] = []
     floor = problem.eigenvalue_floor
-    if decide is not None and problem.flat and floor is not None:
+    # a curved face's passing sets are decided on their pressure at the cascade's approach
+    combined = decide is not None and not problem.flat and approach is not None and approach != 0.0
+    if decide is not None and (problem.flat or combined) and floor is not None:
         tried_displacements = False
         # with the lattice's inverse symbol as the preconditioner, r.M r bounds the energy norm
         # of the error (below), a bound markedly tighter than ||r||_2 / floor
@@ -236,7 +251,7 @@ def solve_contact_set(
             decided_image.clear()
             return False
 
-    def solve(rhs: np.ndarray, x0: np.ndarray | None) -> CGResult:
+    def solve(rhs: np.ndarray, x0: np.ndarray | None, stop=early_stop) -> CGResult:
         return conjugate_gradient(
             apply_operator,
             rhs,
@@ -245,15 +260,31 @@ def solve_contact_set(
             maxiter=settings.maxiter,
             precondition=precondition,
             restrict=contact_in_window,
-            early_stop=early_stop,
+            early_stop=stop,
         )
 
-    unit = solve(
-        np.ones(n),
-        None
-        if warm_start is None
-        else initial_guess(warm_start.pressure_per_approach, warm_start.displacement_per_approach, 1.0),
-    )
+    at_approach: CGResult | None = None
+    if combined and early_stop is not None:
+        assert approach is not None
+        rhs_on_grid = 1.0 - problem.height / approach
+        at_approach = solve(
+            rhs_on_grid[contact],
+            None
+            if warm_start is None
+            else initial_guess(
+                warm_start.pressure_per_approach - warm_start.profile_pressure / approach,
+                warm_start.displacement_per_approach - warm_start.profile_displacement / approach,
+                rhs_on_grid,
+            ),
+        )
+        unit = at_approach
+    else:
+        unit = solve(
+            np.ones(n),
+            None
+            if warm_start is None
+            else initial_guess(warm_start.pressure_per_approach, warm_start.displacement_per_approach, 1.0),
+        )
     if unit.stopped_early:
         counters.record_decided(unit.iterations)
         in_window = not decided_image and window is not None
@@ -276,17 +307,33 @@ def solve_contact_set(
             unit.residual,
             True,
             displacement_in_window=in_window,
+            at_approach=approach if at_approach is not None else None,
         )
-    iterations, residual, converged = unit.iterations, unit.residual, unit.converged
+    spent = 0
+    if at_approach is not None:
+        # undecided (this set may hold): its linear state needs x1 and xh themselves
+        spent = at_approach.iterations
+        unit = solve(
+            np.ones(n),
+            None
+            if warm_start is None
+            else initial_guess(warm_start.pressure_per_approach, warm_start.displacement_per_approach, 1.0),
+            None,
+        )
+    iterations, residual, converged = unit.iterations + spent, unit.residual, unit.converged
     if problem.flat:
         profile_pressure, profile_displacement = np.zeros(n), np.zeros(problem.face.shape)
     else:
-        profile = solve(
-            problem.height[contact],
-            None
-            if warm_start is None
-            else initial_guess(warm_start.profile_pressure, warm_start.profile_displacement, problem.height),
-        )
+        if at_approach is not None and at_approach.converged:
+            assert approach is not None
+            profile_start: np.ndarray | None = approach * (unit.x - at_approach.x)  # xh = d x1 - p
+        else:
+            profile_start = (
+                None
+                if warm_start is None
+                else initial_guess(warm_start.profile_pressure, warm_start.profile_displacement, problem.height)
+            )
+        profile = solve(problem.height[contact], profile_start, None)
         profile_pressure, profile_displacement = profile.x, image_on_grid(profile)
         iterations += profile.iterations
         residual = max(residual, profile.residual)

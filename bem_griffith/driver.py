@@ -90,6 +90,8 @@ def next_event(
     """The nearest approach between ``approach`` and ``target`` (in the direction of travel)
     at which an element of the contact set meets the detachment ``rule`` (default: Eq. 22,
     sigma_c) or a free element's gap closes; ``target`` if none."""
+    if solution.at_approach is not None:
+        raise ValueError("a state decided at one approach is not linear in the approach")
     rule = PaperRule(problem.critical_stress) if rule is None else rule
     direction = 1.0 if target > approach else -1.0
     nearest = target
@@ -165,7 +167,7 @@ def early_decision(
     (``bem_griffith.contact_set.Decision``): ``error`` bounds each pressure's error,
     ``displacement_error`` each free displacement's (by default ``kernel_norm * error``).  None
     where it does not apply."""
-    if not (settings.decide_early and problem.flat and isinstance(rule, PaperRule) and approach != 0):
+    if not (settings.decide_early and isinstance(rule, PaperRule) and approach != 0):
         return None
     threshold = rule.threshold(settings.tie_tolerance)
     gap_tolerance = _gap_tolerance(problem, approach)
@@ -175,12 +177,14 @@ def early_decision(
     # tension only grows as other cells leave, so a cell below the threshold may stay undecided:
     # if it truly reaches the threshold it leaves in a later pass, and the cascade ends at the
     # same set (the largest that holds), only the passes that lead there differ
-    walk = problem.walk_bounds and approach < 0
+    walk = problem.walk_bounds and approach < 0 and problem.flat
 
     def decide(
         contact: np.ndarray, x1: np.ndarray, displacement, error: float, displacement_error: float | None = None
     ) -> bool:
-        tension = -approach * x1  # flat: no profile pressure
+        # x1 is the pressure per approach on a flat face; on a curved one the pressure at this
+        # approach over it (``solve_contact_set``): either way the tension is -d x1
+        tension = -approach * x1
         distance = tension - threshold
         leaving = distance >= 0  # as the pass detaches (``PaperRule.detaching``)
         if not leaving.any():
@@ -240,10 +244,11 @@ def cascade(
         if _certainly_detached(problem, contact, approach, settings):
             counters.cascades_cut += 1
             return no_contact(problem)
-        solution = solve_contact_set(problem, contact, settings, solution, counters, decide)
+        solution = solve_contact_set(problem, contact, settings, solution, counters, decide, approach)
     messages.append(f"cascade at d = {approach:.6g} did not settle")
     counters.unsettled_cascades += 1
-    if solution.displacement_in_window:  # the caller reads the gaps of the whole face
+    if solution.displacement_in_window or solution.at_approach is not None:
+        # the caller reads the gaps of the whole face, linear in the approach
         solution = solve_contact_set(problem, solution.contact, settings, solution, counters)
     return solution
 

@@ -84,13 +84,15 @@ class GriffithSettings:
         on faces whose contact shrinks early, like a star's, whose tips detach first
         (``bench_griffith_pulloff.py``); circles hardly shrink and are unaffected.
     decide_early : bool, optional
-        Flat faces under the paper's criterion (True by default): within a cascade at a fixed
+        Under the paper's criterion (True by default): within a cascade at a fixed
         approach, a contact set from which more elements leave is solved only until a bound on
         its error shows which elements detach and which gaps close (with the Fourier
         preconditioner, the error's energy norm from the preconditioned residual, times the
         lattice's inverse diagonal for the pressures and sqrt(C_00) for the displacements;
         without it, the CG residual over a lower bound of C_SS's eigenvalues); only the set
-        that holds is solved to ``rtol``.  While pulling where ``Problem.walk_bounds`` holds (a
+        that holds is solved to ``rtol``.  On a curved face the passing set is solved for its
+        pressure at the cascade's approach alone (one CG run instead of x1 and xh), and the
+        set that holds for both.  While pulling a flat face where ``Problem.walk_bounds`` holds (a
         property of the element lattice computed at seven exponents, not proven), the gaps are
         known to be open and are not checked, and only the tensions at or above the threshold
         must be certain: a pass may keep a cell that a full solve would detach, which leaves a

@@ -2,6 +2,7 @@
 
     python benchmarks/bench_griffith_pulloff.py [--star512] [--update]
     python benchmarks/bench_griffith_pulloff.py --ties [--update]
+    python benchmarks/bench_griffith_pulloff.py --curved [--update]
 
 For each case: median wall and CPU time of the pull-off, the median time of one bare padded
 FFT convolution (scipy.fft rfft2 -> multiply -> irfft2) at the same padded size, the ratio of
@@ -20,7 +21,10 @@ of the suite's flat faces with the default tie tolerance and with 1e-3, alternat
 and the work of each and how far F_A, the approach at F_A and the detachment approach moved
 (``--ties``: that table alone).  ``--update`` writes docs/performance_griffith_pulloff.json,
 docs/performance_griffith_choices.json and docs/performance_griffith_ties.json (rendered into
-docs/performance.md by ``python benchmarks/docs_tables.py``).
+docs/performance.md by ``python benchmarks/docs_tables.py``).  ``--curved`` pulls the JKR
+sphere (homogeneous and graded) with the cascade's early decisions and with every contact set
+solved to rtol, alternated: CPU times, work and whether the answer moved; ``--update`` writes
+docs/performance_griffith_curved.json.
 
     python benchmarks/bench_griffith_pulloff.py --baseline [REV] [--update]
 
@@ -283,6 +287,73 @@ def tie_table() -> list[list]:
     return rows
 
 
+#: the curved table's cases: the suite's JKR sphere (elements per face radius) and the same
+#: sphere on a graded body, each pulled with early decisions and without, alternated
+CURVED_CASES = [
+    ("jkr_sphere", None, 32),
+    ("jkr_sphere", None, 56),
+    ("jkr_sphere", None, 80),
+    ("jkr_sphere, graded k = 0.5", cs.PowerLawGraded(1.0, 0.5, 0.5), 32),
+]
+CURVED_ROUNDS = 2
+CURVED_HEADERS = [
+    "case",
+    "N/face radius",
+    "cpu s, every set to rtol",
+    "cpu s, early decisions (default)",
+    "full / early",
+    "CG it full / early",
+    "matvecs full / early",
+    "solves",
+    "decided",
+    "|dF_A|/F_A",
+    "same areas",
+]
+
+
+def curved(update: bool) -> None:
+    """Curved faces: a cascade's passing sets decided on their pressure at the cascade's
+    approach (``GriffithSettings.decide_early``, the default) against every set solved to
+    rtol for x1 and xh, alternated in one process; written to
+    docs/performance_griffith_curved.json with ``update``."""
+    import dataclasses
+
+    from crossval.suite import SUITE
+
+    record = _timing.provenance_record()
+    rows = []
+    for name, material, N in CURVED_CASES:
+        sc = SUITE["jkr_sphere"] if material is None else dataclasses.replace(SUITE["jkr_sphere"], material=material)
+        runs: dict[bool, list] = {True: [], False: []}
+        for i in range(CURVED_ROUNDS):
+            for early in (False, True) if i % 2 == 0 else (True, False):
+                cpu = time.process_time()
+                r = bg.solve(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N), decide_early=early))
+                runs[early].append((time.process_time() - cpu, r))
+        full, early = runs[False], runs[True]
+        t_full = float(np.median([t for t, _ in full]))
+        t_early = float(np.median([t for t, _ in early]))
+        a, b = full[0][1], early[0][1]
+        rows.append(
+            [
+                name,
+                N,
+                f"{t_full:.2f}",
+                f"{t_early:.2f}",
+                f"{t_full / t_early:.2f}",
+                f"{a.iterations} / {b.iterations}",
+                f"{a.info['matvecs']} / {b.info['matvecs']}",
+                f"{b.info['solves']}",
+                f"{b.info['decided_solves']}",
+                f"{abs(b.pulloff_force / a.pulloff_force - 1):.1e}",
+                "yes" if np.array_equal(a.curve.contact_area, b.curve.contact_area) else "no",
+            ]
+        )
+        print(_timing.table(rows, CURVED_HEADERS), flush=True)
+    if update:
+        _timing.write_doc_table("performance_griffith_curved", CURVED_HEADERS, rows, record)
+
+
 ROOT = Path(__file__).resolve().parent.parent
 #: the solver before the in-place transforms and the energy-norm decision bounds
 BASELINE = "b5fc263"
@@ -389,5 +460,7 @@ if __name__ == "__main__":
         against_baseline(revision, update="--update" in sys.argv)
     elif "--ties" in sys.argv:
         ties(update="--update" in sys.argv)
+    elif "--curved" in sys.argv:
+        curved(update="--update" in sys.argv)
     else:
         main(star512="--star512" in sys.argv, update="--update" in sys.argv)

@@ -20,6 +20,7 @@ import contact_scene as cs
 from bem_griffith.driver import early_decision
 from bem_griffith.linear import conjugate_gradient
 from bem_griffith.stress_intensity import PaperRule
+from crossval.suite import SUITE
 
 #: the kernels the bounds are checked on: homogeneous, graded with k >= 0 and with k < 0
 MATERIALS = pytest.mark.parametrize(
@@ -372,16 +373,92 @@ def test_local_warm_start_removes_most_of_the_residual_a_change_leaves(curved):
     )
 
 
-def test_early_decisions_do_not_apply_to_curved_faces_or_the_stress_intensity_rule(small_flat):
+def test_early_decisions_need_the_setting_and_a_nonzero_approach(small_flat):
     problem, st, rule = small_flat
     assert early_decision(problem, -1.0, dataclasses.replace(st, decide_early=False), rule) is None
     assert early_decision(problem, 0.0, st, rule) is None
-    curved = bg.solver.build_problem(
-        dataclasses.replace(
-            scene(cs.Circle(1.0)),
-            indenter=cs.Indenter(cs.Circle(1.0), cs.Sphere(2.0)),
-            loading=cs.Loading(press_approach=0.05),
-        ),
-        st,
+
+
+def curved_scene(material=None, shape=None):
+    return dataclasses.replace(
+        scene(shape or cs.Circle(1.0), material),
+        indenter=cs.Indenter(shape or cs.Circle(1.0), cs.Sphere(2.0)),
+        loading=cs.Loading(press_approach=0.05),
     )
-    assert early_decision(curved, -1.0, st, rule) is None
+
+
+def test_a_curved_face_is_decided_on_its_free_gaps_too(small_flat):
+    """A curved face has no walk shortcut: a free gap may close as cells leave, so a pass with
+    a certain leaver is decided only once every free gap is certainly open or closed, and the
+    gaps are asked for (a flat face pulled under the walk property needs none)."""
+    problem, st, rule = small_flat
+    curved = bg.solver.build_problem(curved_scene(), st)
+    d = -1.0
+    contact = curved.face.copy()
+    contact[tuple(np.argwhere(contact)[0])] = False  # one free cell
+    free = curved.face & ~contact
+    threshold = rule.threshold(st.tie_tolerance)
+    x1 = np.full(int(contact.sum()), 0.5 * threshold)  # tension -d x1
+    x1[0] = 2.0 * threshold
+
+    def displacement_with_gap(gap, asked):
+        def displacement():
+            asked.append(True)
+            u = np.zeros(curved.face.shape)
+            u[free] = 1.0 + (gap - curved.height[free]) / d  # gap = (u - 1) d + h
+            return u
+
+        return displacement
+
+    for prob, gap, decided, asks in [
+        (curved, 1e-3, True, True),
+        (curved, 1e-15, False, True),  # within the gaps' error bound of zero
+        (problem, 1e-15, True, False),  # flat and pulled: the walk property opens every gap
+    ]:
+        c = contact if prob is curved else problem.face & ~free
+        x = x1 if prob is curved else np.r_[x1, 0.5 * threshold][: int(c.sum())]
+        asked: list[bool] = []
+        decide = early_decision(prob, d, st, rule)
+        assert decide is not None
+        assert decide(c, x, displacement_with_gap(gap, asked), 1e-9, 1e-9) is decided
+        assert bool(asked) is asks
+
+
+@pytest.mark.parametrize(
+    "material",
+    [cs.Homogeneous(0.75, 0.5), cs.PowerLawGraded(1.0, 0.5, 0.5), cs.PowerLawGraded(1.0, 0.5, -0.5)],
+    ids=["homogeneous", "graded k=0.5", "graded k=-0.5"],
+)
+def test_curved_faces_keep_every_contact_set_with_early_decisions(material):
+    """The JKR sphere pressed, then pulled off (homogeneous and graded): a passing set decided
+    on its pressure at the cascade's approach, p = d y with C_SS y = 1 - h / d, detaches and
+    attaches what a full solve of x1 and xh would, so the same passes, events, contact sets and
+    forces follow (to the CG tolerance), at markedly fewer CG iterations."""
+    sc = dataclasses.replace(SUITE["jkr_sphere"], material=material)
+    N = 16
+    a = bg.solve(sc, settings(N))
+    b = bg.solve(sc, settings(N, decide_early=False))
+    assert a.info["decided_solves"] > 0 and b.info["decided_solves"] == 0
+    assert a.info["events"] == b.info["events"] and a.info["solves"] == b.info["solves"]
+    assert np.array_equal(a.curve.contact_area, b.curve.contact_area)
+    assert np.array_equal(a.last_stable.contact, b.last_stable.contact)
+    # as for flat faces: the CG tolerance bounds a force's relative error by rtol / (eigenvalue
+    # floor x mean x1), twice for two runs
+    problem = bg.solver.build_problem(sc, settings(N))
+    counters = bg.counters.WorkCounters()
+    pressed = bg.contact_set.solve_contact_set(problem, problem.face, settings(N), None, counters)
+    force_rtol = 2 * settings(N).rtol / (problem.eigenvalue_floor * pressed.pressure_per_approach.mean())
+    assert a.pulloff_force == pytest.approx(b.pulloff_force, rel=force_rtol)
+    assert a.pulloff_approach == pytest.approx(b.pulloff_approach, rel=10 * force_rtol)
+    assert np.allclose(a.curve.force, b.curve.force, rtol=10 * force_rtol, atol=force_rtol * b.pulloff_force)
+    assert a.iterations < 0.75 * b.iterations
+    assert a.converged and b.converged
+
+
+def test_a_state_decided_at_one_approach_is_never_extrapolated(small_flat):
+    problem, st, _ = small_flat
+    curved = bg.solver.build_problem(curved_scene(), st)
+    state = bg.contact_set.solve_contact_set(curved, curved.face, st, None, bg.counters.WorkCounters())
+    decided = dataclasses.replace(state, at_approach=-0.1)
+    with pytest.raises(ValueError, match="approach"):
+        bg.driver.next_event(curved, decided, -0.1, -1.0)
