@@ -203,6 +203,12 @@ def solve_contact_set(
     floor = problem.eigenvalue_floor
     # a curved face's passing sets are decided on their pressure at the cascade's approach
     combined = decide is not None and not problem.flat and approach is not None and approach != 0.0
+    # the largest right-hand side entry (1 on a flat face, 1 - h / d on a curved one): the
+    # recursive residual's drift from b - A x, never trusted below, grows with it
+    rhs_size = 1.0
+    if combined:
+        assert approach is not None
+        rhs_size = max(1.0, float(np.abs(1.0 - problem.height[contact] / approach).max()))
     if decide is not None and (problem.flat or combined) and floor is not None:
         tried_displacements = False
         # with the lattice's inverse symbol as the preconditioner, r.M r bounds the energy norm
@@ -229,7 +235,7 @@ def solve_contact_set(
                 return decided_image[0]
 
             # the recursive residual drifts from b - A x by round-off: never trust it below that
-            error = max(residual_norm, 1e-13 * math.sqrt(n)) / floor
+            error = max(residual_norm, 1e-13 * rhs_size * math.sqrt(n)) / floor
             displacement_error = problem.kernel_norm * error
             if energy_bounds and inverse_diagonal is not None:
                 # ||x - x*||_C^2 = r.C_SS^-1 r <= r.(T^-1)_SS r (T the element lattice's Toeplitz
@@ -237,13 +243,15 @@ def solve_contact_set(
                 # its sampling, covered by SAMPLING_MARGIN; by Cauchy-Schwarz in the energy inner
                 # product each pressure's error is at most sqrt((C_SS^-1)_ii) times that norm, and
                 # each free cell's displacement error at most sqrt(C_00) times it
-                energy_error = max(math.sqrt(SAMPLING_MARGIN * max(residual_energy, 0.0)), 1e-13 * math.sqrt(n / floor))
+                energy_error = max(
+                    math.sqrt(SAMPLING_MARGIN * max(residual_energy, 0.0)), 1e-13 * rhs_size * math.sqrt(n / floor)
+                )
                 error = min(error, math.sqrt(inverse_diagonal) * energy_error)
                 displacement_error = min(displacement_error, math.sqrt(problem.self_influence) * energy_error)
             if walk_diagonal is not None:
                 # |e_i| <= sum_j |(C_SS^-1)_ij| max|r| <= 2 (C_SS^-1)_ii max|r|, and a free cell's
                 # displacement error is a sub-probability average of r (``Problem.walk_bounds``)
-                largest = max(residual_max, 1e-13 * math.sqrt(n))
+                largest = max(residual_max, 1e-13 * rhs_size * math.sqrt(n))
                 error = min(error, 2.0 * walk_diagonal * largest)
                 displacement_error = min(displacement_error, largest)
             if decide(contact, x, displacement, error, displacement_error):
