@@ -122,9 +122,33 @@ def _geometric(first: float, end: float, ratio: float) -> np.ndarray:
 #: for k = 1e-9 ... 0.03 (family left out) and 0.04 (kept, a first gap of 0.58).  At 1/2
 #: (k < 0.035 at h_min = 1e-5) the first layer is at most 1.5 h_min thick; the family is kept,
 #: and the mesh unchanged, for every k >= 0.25 at every grading and h_min <= 0.1 the settings
-#: allow (0.1^-0.25 - 1 = 0.78).  Near-coincidences farther down, at fine gradings, are
-#: accidental and kept (k = 0.25, grading 1/3: a layer 0.006 of its neighbours, residual 6e-10).
+#: allow (0.1^-0.25 - 1 = 0.78).  Near-coincidences farther down are merged by
+#: :data:`COINCIDENT_GAP`.
 FILL_MIN_GAP = 0.5
+
+
+#: A zeta-graded line of :func:`build_tensor_mesh` is also left out where a physical line lies
+#: within this fraction of the zeta-graded step below it (h_min for the first): ratio^i and
+#: h_min^-k, the two families' steps, coincide by accident (ln(4/3) / ln(10) = 0.1249, so at
+#: grading 1/3 every k near a multiple of 0.025 does), and the last zeta-graded line, past the
+#: first physical one, may fall next to the second.  Such a sliver layer, with nu = 1/(2 + k)
+#: near 1/2, leaves the diagonal-pivot factorisation short of the solve's tolerance, and the
+#: pivoting fall-backs, at grading 1/3, needed more memory than the machine had.  Measured (the
+#: first factorisation's relative residual, tolerance 1e-8; the gap / step): k = 0.05, grading
+#: 1/3: 4.6e-7 (0.0011), with that line merged 8.1e-9 (0.056, and F_A 1.1x its error bound);
+#: k = 0.1, 1/3: 6.3e-8 (0.0023); k = 0.06, 1: 4.2e-8 (0.0048); k = 0.08, 1.5: 1.2e-8 (0.0079);
+#: k = 0.05, 0.75: 1.1e-8 (0.029).  Merged, each solve is below the tolerance (at most 1.5e-9).
+COINCIDENT_GAP = 0.1
+
+
+def _apart(fill: np.ndarray, physical: np.ndarray) -> np.ndarray:
+    """The lines of ``fill`` (0 first, then geometric) not within :data:`COINCIDENT_GAP` of
+    their own step from a line of ``physical``."""
+    if len(fill) < 2:
+        return fill
+    lines, step = fill[1:], np.diff(fill)
+    gap = np.abs(lines[:, None] - physical[None, :]).min(axis=1)
+    return np.concatenate([fill[:1], lines[gap >= COINCIDENT_GAP * step]])
 
 
 def build_tensor_mesh(*, domain: float, ratio: float, h_min: float, mapping: float) -> MeshTri:
@@ -132,7 +156,8 @@ def build_tensor_mesh(*, domain: float, ratio: float, h_min: float, mapping: flo
     lines graded geometrically (factor ``ratio``) away from the punch edge r = 1 on both sides,
     depth lines graded geometrically in the *physical* depth z = zeta^m from ``h_min`` down
     to the domain's depth, and in zeta itself above the first of them (unless that one lies
-    within :data:`FILL_MIN_GAP` h_min of h_min: k -> 0, where the two families nearly coincide).
+    within :data:`FILL_MIN_GAP` h_min of h_min: k -> 0, where the two families nearly coincide;
+    and without a zeta-graded line next to a physical one, :data:`COINCIDENT_GAP`).
 
     Why not the isotropic mesh of :func:`build_mesh` for a graded body: in the mapped depth
     zeta the edge singularity is anisotropic.  Near the edge the solution varies over the
@@ -153,7 +178,7 @@ def build_tensor_mesh(*, domain: float, ratio: float, h_min: float, mapping: flo
     # [0, zeta[1]]: for k -> 0 (m -> 1) zeta[1] = h_min^(1 - k) nears h_min and the two families
     # nearly coincide (see FILL_MIN_GAP)
     fill = _geometric(h_min, zeta[1], ratio) if zeta[1] - h_min >= FILL_MIN_GAP * h_min else np.zeros(1)
-    zs = np.unique(np.concatenate([zeta, fill]))
+    zs = np.unique(np.concatenate([zeta, _apart(fill, zeta)]))
     # no sliver layer under the bottom line; compared in the physical depth: in zeta the whole
     # graded range is ln(domain / h_min) / m wide, under 1e-9 for 1 - k < 4e-11, and a cut at
     # zeta_max (1 - 1e-9) then dropped every physically graded line

@@ -533,3 +533,42 @@ def test_the_registry_entry_solves_a_scene_asking_for_fields_without_them_and_sa
     assert noted.converged and noted.pulloff_force == plain.pulloff_force
     assert any("fields not written" in m for m in noted.messages)
     assert not any("fields not written" in m for m in plain.messages)
+
+
+@pytest.mark.parametrize("k,grading", [(0.05, 1 / 3), (0.1, 1 / 3), (0.06, 1.0), (0.08, 1.5), (0.05, 0.75), (0.9, 2.0)])
+def test_tensor_mesh_merges_zeta_lines_next_to_physical_ones(k, grading):
+    """The zeta-graded steps ratio^i and the physical ones h_min^-k ratio^(j(1 - k)) coincide
+    by accident (at grading 1/3 for k near every multiple of 0.025): k = 0.05 left a layer
+    0.0011 of its neighbours, the diagonal-pivot factorisation's residual 4.6e-7, and the
+    pivoting fall-backs ran the machine out of memory.  A zeta-graded line within
+    COINCIDENT_GAP = 1/10 of its step from a physical line is merged into it, so no layer is
+    thinner than a tenth of both neighbours, as for small k (the test above)."""
+    t = np.diff(np.unique(_tensor_nodes(k, grading)[1]))
+    sandwiched = t[1:-1] / np.minimum(t[:-2], t[2:])
+    assert sandwiched.min() > 0.1, sandwiched.min()
+
+
+@pytest.mark.parametrize("k,grading", [(0.08, 1.5), (0.06, 1.0)])
+def test_a_graded_mesh_near_a_coincidence_solves_with_diagonal_pivots(monkeypatch, k, grading):
+    """On these meshes the sliver layer left the first (nested dissection, diagonal pivots)
+    factorisation at a residual of 1.2e-8 and 4.2e-8, above the 1e-8 tolerance; the
+    threshold-pivoting fall-back then filled 4.3x as much (k = 0.08) and past 6 GB (k = 0.06,
+    grading 1, 90,000 unknowns).  A second factorisation fails this test before it is tried."""
+    import scipy.sparse.linalg as spla
+
+    import fem_reference.model as fm
+    from fem_reference.solver import build
+
+    calls, splu = [], spla.splu
+
+    def first_only(A, **kw):
+        assert not calls, "fell back to a pivoting factorisation"
+        calls.append(kw)
+        return splu(A, **kw)
+
+    monkeypatch.setattr(fm.spla, "splu", first_only)
+    mat = Material(k, 1 / (2 + k))
+    model = fm.assemble(build(mat, fr.FemSettings(grading=grading)), mat, order=4)
+    _, residual = fm.solve_unit_approach(model)
+    assert residual < fm.SOLVE_TOLERANCE
+
