@@ -51,6 +51,7 @@ __all__ = [
     "local_saddle_matrices",
     "nested_dissection",
     "saddle_matrix",
+    "unknowns",
     "solve_unit_approach",
 ]
 
@@ -270,6 +271,18 @@ KERNELS = ("vectorised", "scikit-fem")
 _DEVIATORIC = np.array([[4, -2, -2, 0], [-2, 4, -2, 0], [-2, -2, 4, 0], [0, 0, 0, 3]]) / 3.0
 
 
+def unknowns(mesh: MeshTri, order: int) -> int:
+    """Degrees of freedom of the saddle-point system of degree ``order`` on ``mesh``, counted
+    without building the bases: a P_p scalar field has a dof per vertex, p - 1 per edge and
+    (p - 1)(p - 2)/2 per triangle; two displacement components of degree p, a pressure of p - 1."""
+    vertices, edges, triangles = mesh.p.shape[1], mesh.facets.shape[1], mesh.t.shape[1]
+
+    def scalar(p: int) -> int:
+        return vertices + (p - 1) * edges + (p - 1) * (p - 2) // 2 * triangles
+
+    return 2 * scalar(order) + scalar(order - 1)
+
+
 def bases(
     mesh: MeshTri, order: int, intorder: int | None = None, elements: np.ndarray | None = None
 ) -> tuple[Basis, Basis]:
@@ -436,13 +449,23 @@ def nested_dissection(dofs: np.ndarray, mesh: MeshTri, *, pressure_from: int, le
 #: the relative residual below which a saddle-point solve counts as converged
 SOLVE_TOLERANCE = 1e-8
 
+#: bytes of working memory per entry of a sparse LU factor: the measured peak (resident) of a
+#: solve over the entries of its factors, 20.6 (k = 0.05, grading 1/3, 155 million entries)
+FACTOR_ENTRY_BYTES = 21.0
+
+#: the fill a pivoting fall-back factorisation is assumed to add over the first one: row swaps
+#: undo the nested-dissection order, measured 4.3x (k = 0.08, grading 1.5, a sliver layer)
+#: and more than 11x (k = 0.06, grading 1: 23 million entries first, past 6 GB with pivoting)
+FALLBACK_FILL = 25.0
+
 
 def solve_unit_approach(
-    model: Model, M: sp.csr_matrix | None = None, *, kernels: str = "vectorised"
+    model: Model, M: sp.csr_matrix | None = None, *, kernels: str = "vectorised", max_memory_gb: float = math.inf
 ) -> tuple[np.ndarray, float]:
     """The combined solution vector (u, p) for u_z = 1 on the face, and the relative residual
     of the linear solve (the best of the factorisations tried; above :data:`SOLVE_TOLERANCE`
-    the caller reports the result as not converged)."""
+    the caller reports the result as not converged).  A fall-back factorisation is tried only
+    when :data:`FALLBACK_FILL` times the first one's entries fit in ``max_memory_gb``."""
     M = model.M if M is None else M
     n = M.shape[0]
     x = np.zeros(n)
@@ -470,12 +493,20 @@ def solve_unit_approach(
         # residual is checked and a failed factorisation falls back to full partial pivoting
         attempts = [("COLAMD", 0.01, False), ("COLAMD", 1.0, False)]
     residual, best = math.inf, None
+    first_entries = None
     for permc, threshold, symmetric in attempts:
+        # pivoting fills unpredictably: on 500,000 unknowns the fall-back outgrew the machine's
+        # memory, so a large system keeps its first factorisation's (reported) residual
+        if first_entries is not None and FALLBACK_FILL * first_entries * FACTOR_ENTRY_BYTES > max_memory_gb * 1e9:
+            break
         try:
             lu = spla.splu(A, permc_spec=permc, options={"DiagPivotThresh": threshold, "SymmetricMode": symmetric})
         except RuntimeError:  # an exactly zero pivot
             continue
+        if first_entries is None:
+            first_entries = lu.nnz
         y = lu.solve(rhs)
+        del lu  # not held while the next one is factorised
         r = float(np.linalg.norm(A @ y - rhs) / np.linalg.norm(rhs))
         if np.all(np.isfinite(y)) and r < residual:
             residual, best = r, y

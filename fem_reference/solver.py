@@ -34,6 +34,7 @@ from contact_scene.result import zero_range_note
 from contact_scene.validation import check_fields, choice, flag, real, whole
 
 from .model import (
+    FACTOR_ENTRY_BYTES,
     KERNELS,
     SOLVE_TOLERANCE,
     Material,
@@ -45,11 +46,28 @@ from .model import (
     local_saddle_matrices,
     saddle_matrix,
     solve_unit_approach,
+    unknowns,
 )
 
-__all__ = ["FemSettings", "solve", "solve_with_resolution", "unit_solution", "UnitSolution"]
+__all__ = [
+    "FemSettings",
+    "estimate_memory_gb",
+    "finest_grading",
+    "solve",
+    "solve_with_resolution",
+    "unit_solution",
+    "UnitSolution",
+]
 
 log = logging.getLogger("fem_reference")
+
+
+#: the working memory a solve may take by default (``FemSettings.max_memory_gb``), as
+#: :data:`bem_energy.problem.MAX_MEMORY_GB`
+MAX_MEMORY_GB = 8.0
+
+#: the gradings ``FemSettings`` accepts
+GRADING_RANGE = (0.05, 4.0)
 
 
 @dataclass(frozen=True)
@@ -82,6 +100,11 @@ class FemSettings:
         Also compute dK/da by re-solving on the two moved meshes (doubles the cost); it
         agrees with the stiffness derivative to about 1e-6 (graded k = 0.25, grading 2), the
         precision of two solves' difference over 2e-4 a.  False by default.
+    max_memory_gb : float, optional
+        The working memory a solve may take, in GB, > 0; :data:`MAX_MEMORY_GB` (8) by default.
+        A mesh whose estimated factorisation (:func:`estimate_memory_gb`) needs more is refused
+        before assembly, naming ``fem.grading`` and the gradings that fit; a fall-back
+        factorisation that might not fit is not tried (the solve's residual is then reported).
     fields_path : str or None, optional
         Where to write the displacement and pressure at pull-off (VTU or XDMF, by meshio)
         when the scene asks for fields; None by default (then a scene asking for fields is
@@ -102,12 +125,13 @@ class FemSettings:
         ``fem.fields_path`` for a path that does not end in .vtu or .xdmf.
     """
 
-    grading: float = real(1.0, ge=0.05, le=4.0)
+    grading: float = real(1.0, ge=GRADING_RANGE[0], le=GRADING_RANGE[1])
     order: int = whole(4, ge=2, le=4)
     domain_radius: float = real(2.0**20, ge=16.0, le=2.0**40)
     h_min: float = real(1e-5, ge=1e-12, le=0.1)
     vce_radius: float = real(0.25, ge=0.01, le=0.5)
     compliance_check: bool = flag(False)
+    max_memory_gb: float = real(MAX_MEMORY_GB, gt=0.0)
     fields_path: str | None = None
     kernels: str = choice("vectorised", KERNELS)
 
@@ -119,6 +143,46 @@ class FemSettings:
             not isinstance(path, (str, os.PathLike)) or os.path.splitext(str(path))[1].lower() not in FIELD_FORMATS
         ):
             raise SceneError("fem.fields_path", f"must be a path ending in {' or '.join(FIELD_FORMATS)} (got {path!r})")
+
+
+#: entries of the nested-dissection LU factors per n log2(n) unknowns n: 15.5, 16.0, 16.3,
+#: 16.4 measured on tensor meshes of 91,000 - 546,000 unknowns (degree 4, k = 0.05 and 0.25)
+#: and 14.3, 16.9 on the isotropic mesh (nu = 0.3, grading 2, 1)
+FACTOR_ENTRIES_PER_N_LOG_N = 17.0
+
+
+def estimate_memory_gb(mesh: MeshTri, order: int) -> float:
+    """Working memory of the solve of degree ``order`` on ``mesh``, in GB: the LU factors
+    dominate (:data:`FACTOR_ENTRIES_PER_N_LOG_N`, at
+    :data:`fem_reference.model.FACTOR_ENTRY_BYTES` each)."""
+    n = unknowns(mesh, order)
+    return FACTOR_ENTRIES_PER_N_LOG_N * n * math.log2(n) * FACTOR_ENTRY_BYTES / 1e9
+
+
+def finest_grading(material: Material, settings: FemSettings) -> float | None:
+    """The smallest grading, to 1 %, not below ``settings.grading``, whose mesh
+    :func:`estimate_memory_gb` fits in ``settings.max_memory_gb`` (the estimate grows as the
+    grading shrinks); None when not even the coarsest allowed one fits."""
+    if _fits(material, settings, settings.grading):
+        return settings.grading
+    return _finest_above(material, settings)
+
+
+def _fits(material: Material, settings: FemSettings, grading: float) -> bool:
+    mesh = build(material, dataclasses.replace(settings, grading=grading))
+    return estimate_memory_gb(mesh, settings.order) <= settings.max_memory_gb
+
+
+def _finest_above(material: Material, settings: FemSettings) -> float | None:
+    # bisection between settings.grading, which does not fit, and the coarsest allowed grading;
+    # the fine end is never rebuilt (an isotropic mesh at grading 0.05 takes half a minute)
+    lo, hi = settings.grading, GRADING_RANGE[1] if material.mapping != 1.0 else MAX_ISOTROPIC_GRADING
+    if not _fits(material, settings, hi):
+        return None
+    while hi / lo > 1.01:
+        mid = math.sqrt(lo * hi)
+        lo, hi = (lo, mid) if _fits(material, settings, mid) else (mid, hi)
+    return hi
 
 
 #: the file formats the fields are written in (by meshio)
@@ -259,15 +323,33 @@ def unit_solution(
     Raises
     ------
     contact_scene.SceneError
-        ``fem.grading`` when building the mesh of a homogeneous body with grading > 2.
+        ``fem.grading`` when building the mesh of a homogeneous body with grading > 2, or
+        for a mesh whose estimated memory (:func:`estimate_memory_gb`) exceeds
+        ``settings.max_memory_gb`` (the message names the gradings that fit).
     """
     t0 = time.perf_counter()
     log.info("meshing (grading %g)", settings.grading)
     mesh = build(material, settings) if mesh is None else mesh
+    need = estimate_memory_gb(mesh, settings.order)
+    if need > settings.max_memory_gb:
+        # refused before the assembly: a factorisation past the machine's memory does not fail
+        # cleanly, it swaps or is killed
+        finest = _finest_above(material, settings)
+        allowed = (
+            f"gradings >= {finest:.3g} fit"
+            if finest is not None
+            else "no allowed grading fits: raise fem.max_memory_gb or fem.h_min"
+        )
+        raise SceneError(
+            "fem.grading",
+            f"the mesh of grading {settings.grading:g} has {unknowns(mesh, settings.order):,} unknowns, "
+            f"an estimated {need:.1f} GB to factorise, more than fem.max_memory_gb = {settings.max_memory_gb:g}; "
+            f"for this material, order and h_min {allowed}",
+        )
     t1 = time.perf_counter()
     log.info("assembling and solving: %d elements of degree %d", mesh.t.shape[1], settings.order)
     model = assemble(mesh, material, order=settings.order, kernels=settings.kernels)
-    x, residual = solve_unit_approach(model, kernels=settings.kernels)
+    x, residual = solve_unit_approach(model, kernels=settings.kernels, max_memory_gb=settings.max_memory_gb)
     t2 = time.perf_counter()
     Mx = model.M @ x
     K = 2 * math.pi * float(np.add.reduce(x * Mx))  # the pairwise sum of _energy
@@ -311,7 +393,10 @@ def unit_solution(
         minus = assemble(
             _moved(mesh, -delta, q), material, order=settings.order, face_radius=1 - delta, kernels=settings.kernels
         )
-        (xp, rp), (xm, rm) = (solve_unit_approach(m, kernels=settings.kernels) for m in (plus, minus))
+        (xp, rp), (xm, rm) = (
+            solve_unit_approach(m, kernels=settings.kernels, max_memory_gb=settings.max_memory_gb)
+            for m in (plus, minus)
+        )
         residual = max(residual, rp, rm)
         dK_c = 2 * math.pi * (_energy(plus.M, xp) - _energy(minus.M, xm)) / (2 * delta)
         timings["compliance_check"] = time.perf_counter() - t3
@@ -472,7 +557,8 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
     contact_scene.SceneError
         ``indenter.shape`` for a face that is not a circle with a flat profile;
         ``material.exponent`` for a graded body with k < 0 or k > 1 - 1e-9 (see
-        :func:`applies`); ``fem.grading`` for a homogeneous body with grading > 2;
+        :func:`applies`); ``fem.grading`` for a homogeneous body with grading > 2 or a mesh
+        beyond ``fem.max_memory_gb`` (see :func:`unit_solution`);
         ``fem.fields_path`` when the scene asks for fields and the settings give no path.
     """
     check_type("scene", scene, Scene)
