@@ -503,6 +503,15 @@ def solve_unit_approach(
             lu = spla.splu(A, permc_spec=permc, options={"DiagPivotThresh": threshold, "SymmetricMode": symmetric})
         except RuntimeError:  # an exactly zero pivot
             continue
+        except (MemoryError, SystemError) as exc:
+            # SuperLU reports a failed allocation as either (SystemError: "gstrf was called
+            # with invalid arguments"); the memory estimate before assembly should prevent it
+            if best is not None:
+                break  # keep the first factorisation's result and its reported residual
+            raise MemoryError(
+                f"fem_reference: the factorisation of {A.shape[0]} unknowns ran out of memory ({exc}); "
+                "choose a coarser fem.grading or a lower fem.max_memory_gb, whose estimate refuses such meshes"
+            ) from exc
         if first_entries is None:
             first_entries = lu.nnz
         y = lu.solve(rhs)

@@ -632,6 +632,39 @@ def test_a_fall_back_factorisation_that_might_not_fit_is_not_tried(monkeypatch):
     assert len(calls) > 1 and unlimited <= residual
 
 
+@pytest.mark.parametrize("error", [MemoryError, SystemError])
+def test_a_factorisation_out_of_memory_says_so_or_keeps_the_first_result(monkeypatch, error):
+    """SuperLU reports a failed allocation as MemoryError or SystemError ("gstrf was called
+    with invalid arguments"): on the first factorisation the solve says it ran out of memory
+    and names the grading; on a fall-back it keeps the first factorisation's result."""
+    import scipy.sparse.linalg as spla
+
+    import fem_reference.model as fm
+    from fem_reference.solver import build
+
+    mat = Material(0.5, 0.4)
+    model = fm.assemble(build(mat, fr.FemSettings(grading=4.0)), mat, order=2)
+    splu, calls = spla.splu, []
+
+    def failing(after):
+        def factorise(A, **kw):
+            calls.append(kw)
+            if len(calls) > after:
+                raise error("gstrf was called with invalid arguments")
+            return splu(A, **kw)
+
+        return factorise
+
+    monkeypatch.setattr(fm.spla, "splu", failing(0))
+    with pytest.raises(MemoryError, match="fem.grading"):
+        fm.solve_unit_approach(model)
+    calls.clear()
+    monkeypatch.setattr(fm, "SOLVE_TOLERANCE", 0.0)  # every factorisation "fails": fall back
+    monkeypatch.setattr(fm.spla, "splu", failing(1))
+    x, residual = fm.solve_unit_approach(model)
+    assert len(calls) == 2 and np.isfinite(residual) and np.all(np.isfinite(x))
+
+
 @pytest.mark.slow
 def test_a_small_exponent_at_grading_one_third_solves_and_meets_the_closed_forms():
     """k = 0.05 at grading 1/3 ran out of memory (a sliver layer 0.0011 of its neighbours, then
