@@ -131,7 +131,9 @@ def solve_contact_set(
     p = d x1 - xh, is one solve, C_SS y = 1 - h / d with p = d y, and ``decide`` reads y as it
     reads x1 on a flat face.  A decided set is returned as y with no profile part, exact at
     d only, which is all a passing set of a cascade at d is used for; otherwise x1 and xh are
-    solved as without ``decide``, xh warm-started from d (x1 - y)."""
+    solved as without ``decide``, xh warm-started from d (x1 - y).  x1 and xh never start from
+    such a decided state (its y grows like h / |d|, and CG started from it stops on a recursive
+    residual whose round-off, near d = 0, far exceeds rtol)."""
     window = window_for(problem, contact)
     if window is None:
         operator, contact_in_window, inverse = problem.operator, contact, problem.inverse_symbol
@@ -271,6 +273,15 @@ def solve_contact_set(
             early_stop=stop,
         )
 
+    def unit_start() -> np.ndarray | None:
+        # x1 from the previous set's x1; a state decided at one approach holds y = x1 - xh / d
+        # instead, whose entries grow like h / |d|: started from it, CG's recursive residual
+        # drifts from b - A x by round-off of that size (near d = 0 far above rtol, while it
+        # reports convergence), so x1 starts afresh after a decided set
+        if warm_start is None or warm_start.at_approach is not None:
+            return None
+        return initial_guess(warm_start.pressure_per_approach, warm_start.displacement_per_approach, 1.0)
+
     at_approach: CGResult | None = None
     if combined and early_stop is not None:
         assert approach is not None
@@ -287,12 +298,7 @@ def solve_contact_set(
         )
         unit = at_approach
     else:
-        unit = solve(
-            np.ones(n),
-            None
-            if warm_start is None
-            else initial_guess(warm_start.pressure_per_approach, warm_start.displacement_per_approach, 1.0),
-        )
+        unit = solve(np.ones(n), unit_start())
     if unit.stopped_early:
         counters.record_decided(unit.iterations)
         in_window = not decided_image and window is not None
@@ -321,13 +327,7 @@ def solve_contact_set(
     if at_approach is not None:
         # undecided (this set may hold): its linear state needs x1 and xh themselves
         spent = at_approach.iterations
-        unit = solve(
-            np.ones(n),
-            None
-            if warm_start is None
-            else initial_guess(warm_start.pressure_per_approach, warm_start.displacement_per_approach, 1.0),
-            None,
-        )
+        unit = solve(np.ones(n), unit_start(), None)
     iterations, residual, converged = unit.iterations + spent, unit.residual, unit.converged
     if problem.flat:
         profile_pressure, profile_displacement = np.zeros(n), np.zeros(problem.face.shape)
@@ -338,7 +338,7 @@ def solve_contact_set(
         else:
             profile_start = (
                 None
-                if warm_start is None
+                if warm_start is None or warm_start.at_approach is not None
                 else initial_guess(warm_start.profile_pressure, warm_start.profile_displacement, problem.height)
             )
         profile = solve(problem.height[contact], profile_start, None)

@@ -19,6 +19,7 @@ import bem_griffith as bg
 import contact_scene as cs
 from bem_griffith.driver import early_decision
 from bem_griffith.linear import conjugate_gradient
+from bem_griffith.press import press_to_approach
 from bem_griffith.stress_intensity import PaperRule
 from crossval.suite import SUITE
 
@@ -462,3 +463,42 @@ def test_a_state_decided_at_one_approach_is_never_extrapolated(small_flat):
     decided = dataclasses.replace(state, at_approach=-0.1)
     with pytest.raises(ValueError, match="approach"):
         bg.driver.next_event(curved, decided, -0.1, -1.0)
+
+
+def test_a_holding_set_after_a_decided_one_is_solved_to_rtol_near_zero_approach():
+    """Near d = 0 a decided set's y = x1 - xh / d is of the size h / |d|: the set that holds
+    after it must not start its x1 from y, whose round-off would leave CG's recursive residual
+    far below the true one (x1 wrong by percents at |d| ~ 1e-16, reported as converged), and
+    the wrong x1 is then extrapolated to the next event or step."""
+    sc = dataclasses.replace(
+        curved_scene(), indenter=cs.Indenter(cs.Circle(0.42), cs.Paraboloid(1.0)),
+        adhesion=cs.Adhesion(0.004), loading=cs.Loading(press_approach=0.15),
+    )
+    st = settings(12)
+    problem = bg.solver.build_problem(sc, st)
+    pressed = press_to_approach(problem, 0.15, st, bg.counters.WorkCounters())
+    for d in (-1e-16, 1e-12):
+        counters = bg.counters.WorkCounters()
+        held = bg.driver.cascade(problem, pressed, d, st, counters, [], -1.0)
+        assert counters.decided_solves > 0 and held.at_approach is None and held.converged
+        c = held.contact
+        for x, b in ((held.pressure_per_approach, np.ones(int(c.sum()))), (held.profile_pressure, problem.height[c])):
+            true_residual = np.linalg.norm(b - problem.operator.apply_masked(x, c)[c]) / np.linalg.norm(b)
+            assert true_residual <= 10 * st.rtol
+
+
+def test_the_fixed_step_driver_through_zero_approach_keeps_every_contact_set_with_early_decisions():
+    """press 0.1 in steps of 0.002 lands the fixed-step driver on d ~ -7e-17 (round-off), where a
+    curved face's cascade decides passing sets: the steps after it see the same contact sets
+    and forces as with full solves."""
+    sc = dataclasses.replace(
+        curved_scene(), indenter=cs.Indenter(cs.Circle(0.42), cs.Paraboloid(1.0)),
+        adhesion=cs.Adhesion(0.003), loading=cs.Loading(press_approach=0.1),
+    )
+    st = settings(16, driver="fixed_step", step=0.002)
+    a = bg.solve(sc, st)
+    b = bg.solve(sc, dataclasses.replace(st, decide_early=False))
+    assert a.info["decided_solves"] > 0
+    assert a.info["solves"] == b.info["solves"]
+    assert np.array_equal(a.curve.contact_area, b.curve.contact_area)
+    assert np.allclose(a.curve.force, b.curve.force, rtol=1e-8, atol=1e-10)
