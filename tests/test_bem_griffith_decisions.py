@@ -457,8 +457,19 @@ def test_curved_faces_keep_every_contact_set_with_early_decisions(material):
 
 
 def test_a_state_decided_at_one_approach_is_never_extrapolated(small_flat):
+    """A curved face's decided state says at which approach it was decided (a flat face's is
+    linear in the approach and says nothing), and the next event refuses it."""
     problem, st, _ = small_flat
     curved = bg.solver.build_problem(curved_scene(), st)
+
+    def always(*args):
+        return True
+
+    for prob, marked in ((curved, -0.1), (problem, None)):
+        state = bg.contact_set.solve_contact_set(
+            prob, prob.face.copy(), st, None, bg.counters.WorkCounters(), always, -0.1
+        )
+        assert state.residual > st.rtol and state.at_approach == marked  # stopped: decided
     state = bg.contact_set.solve_contact_set(curved, curved.face, st, None, bg.counters.WorkCounters())
     decided = dataclasses.replace(state, at_approach=-0.1)
     with pytest.raises(ValueError, match="approach"):
@@ -471,8 +482,10 @@ def test_a_holding_set_after_a_decided_one_is_solved_to_rtol_near_zero_approach(
     far below the true one (x1 wrong by percents at |d| ~ 1e-16, reported as converged), and
     the wrong x1 is then extrapolated to the next event or step."""
     sc = dataclasses.replace(
-        curved_scene(), indenter=cs.Indenter(cs.Circle(0.42), cs.Paraboloid(1.0)),
-        adhesion=cs.Adhesion(0.004), loading=cs.Loading(press_approach=0.15),
+        curved_scene(),
+        indenter=cs.Indenter(cs.Circle(0.42), cs.Paraboloid(1.0)),
+        adhesion=cs.Adhesion(0.004),
+        loading=cs.Loading(press_approach=0.15),
     )
     st = settings(12)
     problem = bg.solver.build_problem(sc, st)
@@ -492,8 +505,10 @@ def test_the_fixed_step_driver_through_zero_approach_keeps_every_contact_set_wit
     curved face's cascade decides passing sets: the steps after it see the same contact sets
     and forces as with full solves."""
     sc = dataclasses.replace(
-        curved_scene(), indenter=cs.Indenter(cs.Circle(0.42), cs.Paraboloid(1.0)),
-        adhesion=cs.Adhesion(0.003), loading=cs.Loading(press_approach=0.1),
+        curved_scene(),
+        indenter=cs.Indenter(cs.Circle(0.42), cs.Paraboloid(1.0)),
+        adhesion=cs.Adhesion(0.003),
+        loading=cs.Loading(press_approach=0.1),
     )
     st = settings(16, driver="fixed_step", step=0.002)
     a = bg.solve(sc, st)
