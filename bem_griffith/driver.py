@@ -330,7 +330,16 @@ def pull(
                 recorder.point(approach, solution)
             outcome.events += 1
             if outcome.events > max_events:
-                outcome.messages.append(f"stopped after {outcome.events} events without detaching")
+                why = ""
+                if problem.work_of_adhesion == 0 and not problem.flat:
+                    # sigma_c = 0 leaves the tie tolerance no slack: an edge cell whose pressure
+                    # falls a round-off short of zero at its event fires the same event again
+                    why = (
+                        " (no adhesion, adhesion.work_of_adhesion = 0: on a curved face the paper's rule with "
+                        "sigma_c = 0 is degenerate at the contact edge, where pressure and gap both vanish; "
+                        "give a positive work of adhesion)"
+                    )
+                outcome.messages.append(f"stopped after {outcome.events} events without detaching{why}")
                 outcome.aborted = True
                 break
         if not solution.attached or outcome.aborted:

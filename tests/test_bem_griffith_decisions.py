@@ -517,3 +517,15 @@ def test_the_fixed_step_driver_through_zero_approach_keeps_every_contact_set_wit
     assert a.info["solves"] == b.info["solves"]
     assert np.array_equal(a.curve.contact_area, b.curve.contact_area)
     assert np.allclose(a.curve.force, b.curve.force, rtol=1e-8, atol=1e-10)
+
+
+def test_a_curved_face_without_adhesion_says_why_it_does_not_detach():
+    """With w = 0 the paper's rule has sigma_c = 0, and on a curved face an edge cell whose
+    pressure falls a round-off short of zero repeats its event: the pull stops at the event
+    limit, not converged, and says that the missing adhesion is why (a flat face detaches)."""
+    sc = dataclasses.replace(SUITE["jkr_sphere"], adhesion=cs.Adhesion(0.0))
+    r = bg.solve(sc, settings(8))
+    assert not r.converged
+    assert any("work_of_adhesion = 0" in m for m in r.messages), r.messages
+    flat = bg.solve(cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.Adhesion(0.0)), settings(8))
+    assert flat.converged and not any("work_of_adhesion" in m for m in flat.messages)
