@@ -207,10 +207,11 @@ def solve_contact_set(
     combined = decide is not None and not problem.flat and approach is not None and approach != 0.0
     # the largest right-hand side entry (1 on a flat face, 1 - h / d on a curved one): the
     # recursive residual's drift from b - A x, never trusted below, grows with it
-    rhs_size = 1.0
+    rhs_size, rhs_on_grid = 1.0, None
     if combined:
         assert approach is not None
-        rhs_size = max(1.0, float(np.abs(1.0 - problem.height[contact] / approach).max()))
+        rhs_on_grid = 1.0 - problem.height / approach
+        rhs_size = max(1.0, float(np.abs(rhs_on_grid[contact]).max()))
     if decide is not None and (problem.flat or combined) and floor is not None:
         tried_displacements = False
         # with the lattice's inverse symbol as the preconditioner, r.M r bounds the energy norm
@@ -284,8 +285,7 @@ def solve_contact_set(
 
     at_approach: CGResult | None = None
     if combined and early_stop is not None:
-        assert approach is not None
-        rhs_on_grid = 1.0 - problem.height / approach
+        assert approach is not None and rhs_on_grid is not None
         at_approach = solve(
             rhs_on_grid[contact],
             None
