@@ -52,7 +52,6 @@ from .model import (
 __all__ = [
     "FemSettings",
     "estimate_memory_gb",
-    "finest_grading",
     "solve",
     "solve_with_resolution",
     "unit_solution",
@@ -159,21 +158,15 @@ def estimate_memory_gb(mesh: MeshTri, order: int) -> float:
     return FACTOR_ENTRIES_PER_N_LOG_N * n * math.log2(n) * FACTOR_ENTRY_BYTES / 1e9
 
 
-def finest_grading(material: Material, settings: FemSettings) -> float | None:
-    """The smallest grading, to 1 %, not below ``settings.grading``, whose mesh
-    :func:`estimate_memory_gb` fits in ``settings.max_memory_gb`` (the estimate grows as the
-    grading shrinks); None when not even the coarsest allowed one fits."""
-    if _fits(material, settings, settings.grading):
-        return settings.grading
-    return _finest_above(material, settings)
-
-
 def _fits(material: Material, settings: FemSettings, grading: float) -> bool:
     mesh = build(material, dataclasses.replace(settings, grading=grading))
     return estimate_memory_gb(mesh, settings.order) <= settings.max_memory_gb
 
 
 def _finest_above(material: Material, settings: FemSettings) -> float | None:
+    """The smallest grading, to 1 %, above ``settings.grading`` whose mesh
+    :func:`estimate_memory_gb` fits in ``settings.max_memory_gb`` (the estimate grows as the
+    grading shrinks); None when not even the coarsest allowed one fits."""
     # bisection between settings.grading, which does not fit, and the coarsest allowed grading;
     # the fine end is never rebuilt (an isotropic mesh at grading 0.05 takes half a minute)
     lo, hi = settings.grading, GRADING_RANGE[1] if material.mapping != 1.0 else MAX_ISOTROPIC_GRADING
