@@ -134,7 +134,7 @@ FILL_MIN_GAP = 0.5
 #: grading 1/3 every k near a multiple of 0.025 does), and the last zeta-graded line, past the
 #: first physical one, may fall next to the second.  Such a sliver layer, with nu = 1/(2 + k)
 #: near 1/2, leaves the diagonal-pivot factorisation short of the solve's tolerance, and the
-#: pivoting fall-backs, at grading 1/3, needed more memory than the machine had.  Measured (the
+#: pivoting fall-backs, at grading 1/3, needed more than 6 GB (the limit they ran under).  Measured (the
 #: first factorisation's relative residual, tolerance 1e-8; the gap / step): k = 0.05, grading
 #: 1/3: 4.6e-7 (0.0011), with that line merged 8.1e-9 (0.056, and F_A 1.1x its error bound);
 #: k = 0.1, 1/3: 6.3e-8 (0.0023); k = 0.06, 1: 4.2e-8 (0.0048); k = 0.08, 1.5: 1.2e-8 (0.0079);
@@ -495,8 +495,8 @@ def solve_unit_approach(
     residual, best = math.inf, None
     first_entries = None
     for permc, threshold, symmetric in attempts:
-        # pivoting fills unpredictably: on 500,000 unknowns the fall-back outgrew the machine's
-        # memory, so a large system keeps its first factorisation's (reported) residual
+        # pivoting fills unpredictably: on 500,000 unknowns the fall-back outgrew 6 GB,
+        # so a large system keeps its first factorisation's (reported) residual
         if first_entries is not None and FALLBACK_FILL * first_entries * FACTOR_ENTRY_BYTES > max_memory_gb * 1e9:
             break
         try:
