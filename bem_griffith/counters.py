@@ -26,7 +26,11 @@ class WorkCounters:
     unconverged_solves
         Contact-set solves whose CG stopped above its tolerance.
     unsettled_cascades
-        Cascades that did not reach a stable contact set within their pass limit.
+        Cascades that did not reach a stable contact set within their pass limit, or that came
+        back to a contact set they had already left.
+    cycled_cascades
+        Of those, the cascades that came back to a set (the pull stops there: every later pass
+        would repeat the cycle).
     detached_elements
         Face elements that left the contact set, summed over all cascades.
     cascades_cut
@@ -45,6 +49,7 @@ class WorkCounters:
     worst_residual: float = 0.0
     unconverged_solves: int = 0
     unsettled_cascades: int = 0
+    cycled_cascades: int = 0
     detached_elements: int = 0
     cascades_cut: int = 0
     windowed_solves: int = 0

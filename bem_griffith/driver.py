@@ -36,7 +36,7 @@ from .counters import WorkCounters
 from .problem import Problem
 from .recording import PullRecorder
 from .settings import GriffithSettings
-from .stress_intensity import DetachmentRule, PaperRule, StressIntensityRule, detachment_rule
+from .stress_intensity import DetachmentRule, PaperRule, StressIntensityRule, detachment_rule, pressure_roundoff
 
 __all__ = ["PullOutcome", "pull", "next_event", "cascade", "gap_coefficients", "pull_targets"]
 
@@ -97,7 +97,12 @@ def next_event(
     nearest = target
     eps = 1e-13 * max(abs(approach), abs(target), 1e-300)
     at_critical_stress = rule.critical_approaches(solution)
-    ahead = (at_critical_stress - approach) * direction >= -eps
+    if isinstance(rule, PaperRule):
+        # only a tension that rises along the direction of travel meets sigma_c there; one that
+        # falls crosses it leaving (a cell kept at the threshold by ``_falling_at_threshold``)
+        at_critical_stress = np.where(solution.pressure_per_approach * direction < 0, at_critical_stress, np.nan)
+    with np.errstate(invalid="ignore"):
+        ahead = (at_critical_stress - approach) * direction >= -eps
     if ahead.any():
         candidates = at_critical_stress[ahead]
         first = candidates.max() if direction < 0 else candidates.min()
@@ -152,8 +157,66 @@ def _gap_tolerance(problem: Problem, approach: float) -> float:
     return 1e-12 * max(abs(approach), problem.spacing * 1e-6)
 
 
+def _open_tolerance(problem: Problem, contact: np.ndarray, approach: float, settings: GriffithSettings) -> float:
+    """How far below zero the gap of a free cell that is opening may lie before the cell
+    re-attaches: CG's error in the displacements.  Under the walk property a free cell's
+    displacement error is a sub-probability average of the residual, whose largest entry is at
+    most its 2-norm, rtol sqrt(n) times that of the right-hand side (1 for x1, h for xh), so
+    u = d u1 - uh errs by at most rtol sqrt(n) (|d| + max |h|); twice that.  A cell that left
+    at zero pressure (no adhesion: sigma_c = 0) has a gap of zero to within this error, and
+    must not re-attach on its noise.  Without the walk property (graded k < 0) the same band,
+    not a bound.  The gap's own round-off (:func:`_gap_tolerance`) where it is larger."""
+    n = int(contact.sum())
+    if n == 0:
+        return _gap_tolerance(problem, approach)
+    size = abs(approach) + float(np.abs(problem.height[contact]).max())
+    return max(_gap_tolerance(problem, approach), 2.0 * settings.rtol * math.sqrt(n) * size)
+
+
+def _pressure_noise(problem: Problem, contact: np.ndarray, approach: float, settings: GriffithSettings) -> float:
+    """CG's error in the pressures p = d x1 - xh of a set solved to rtol.  The residuals of the
+    two solves have largest entries of at most rtol sqrt(n) (|d| + max |h|) together (their
+    2-norms), and under the walk property each pressure errs by at most twice
+    ``inverse_diagonal`` times that (``||r||_2 / eigenvalue_floor`` otherwise); twice the
+    bound, 0 where neither is known."""
+    n = int(contact.sum())
+    if n == 0:
+        return 0.0
+    residual = settings.rtol * math.sqrt(n) * (abs(approach) + float(np.abs(problem.height[contact]).max()))
+    if problem.walk_bounds and problem.inverse_diagonal is not None:
+        return 2.0 * 2.0 * problem.inverse_diagonal * residual
+    if problem.eigenvalue_floor is not None:
+        return 2.0 * residual / problem.eigenvalue_floor
+    return 0.0
+
+
+def _tensions_rise(problem: Problem, direction: float) -> bool:
+    """Whether every contact cell's tension rises along the direction of travel: while pulling
+    under the walk property, where x1 = C_SS^-1 1 > 0 (positive row sums of C_SS^-1)."""
+    return problem.walk_bounds and direction < 0
+
+
+def _falling_at_threshold(
+    problem: Problem,
+    solution: ContactSolution,
+    approach: float,
+    settings: GriffithSettings,
+    rule: PaperRule,
+    direction: float,
+) -> np.ndarray:
+    """The contact cells whose tension lies above the threshold by less than CG's error in the
+    pressures and falls along the direction of travel (x1 d moves p up): at the threshold and
+    leaving it, so they stay.  Without adhesion (sigma_c = 0) a cell that re-attaches as its
+    gap closes carries a pressure of zero, to CG's noise, and would otherwise leave again at
+    once.  Asked only where some tension may fall (``_tensions_rise``); there a decided state,
+    whose x1 is not known, has no leaving cell in that band (``early_decision`` waits)."""
+    tension = -solution.pressure(approach)
+    noise = _pressure_noise(problem, solution.contact, approach, settings)
+    return (tension < rule.threshold(settings.tie_tolerance) + noise) & (solution.pressure_per_approach * direction > 0)
+
+
 def early_decision(
-    problem: Problem, approach: float, settings: GriffithSettings, rule: DetachmentRule
+    problem: Problem, approach: float, settings: GriffithSettings, rule: DetachmentRule, direction: float = -1.0
 ) -> Decision | None:
     """For a cascade at ``approach`` on a flat face under the paper's rule: a test whether an
     unfinished solve of a contact set already fixes the cascade's next pass, i.e. every tension
@@ -178,6 +241,7 @@ def early_decision(
     # if it truly reaches the threshold it leaves in a later pass, and the cascade ends at the
     # same set (the largest that holds), only the passes that lead there differ
     walk = problem.walk_bounds and approach < 0 and problem.flat
+    rising = _tensions_rise(problem, direction)  # none is kept at the threshold as falling
 
     def decide(
         contact: np.ndarray, x1: np.ndarray, displacement, error: float, displacement_error: float | None = None
@@ -185,10 +249,14 @@ def early_decision(
         # x1 is the pressure per approach on a flat face; on a curved one the pressure at this
         # approach over it (``solve_contact_set``): either way the tension is -d x1
         tension = -approach * x1
-        distance = tension - threshold
+        # a decided state carries x1 (on a curved face, p / d) with no profile part: its cells'
+        # round-off is that of d x1 alone, as the pass computes it
+        distance = tension - (threshold - pressure_roundoff(approach, x1))
         leaving = distance >= 0  # as the pass detaches (``PaperRule.detaching``)
         if not leaving.any():
             return False  # nothing leaves (this set may hold)
+        if not rising and (tension[leaving] < threshold + _pressure_noise(problem, contact, approach, settings)).any():
+            return False  # a leaver within CG's noise of the threshold: the pass needs its x1
         if np.abs(distance[leaving] if walk else distance).min() <= abs(approach) * error:
             return False  # a tension is too close to call
         free = problem.face & ~contact
@@ -198,8 +266,10 @@ def early_decision(
         if displacement_error is None:  # Cauchy-Schwarz on each row of C
             displacement_error = problem.kernel_norm * error
         gap_error = abs(approach) * displacement_error
-        # each free gap certainly open (> tolerance) or certainly closed (< -tolerance)
-        return bool(np.all((gap > gap_tolerance + gap_error) | (gap < -gap_tolerance - gap_error)))
+        # each free gap certainly open (> tolerance) or certainly closed (< -open tolerance): the
+        # pass then leaves or re-attaches it whichever way the gap moves
+        closed = -_open_tolerance(problem, contact, approach, settings) - gap_error
+        return bool(np.all((gap > gap_tolerance + gap_error) | (gap < closed)))
 
     return decide
 
@@ -221,9 +291,14 @@ def cascade(
     A free element whose gap is zero (to round-off) re-attaches when the gap is closing along
     the direction of travel: that is the gap event that brought the driver here."""
     rule = PaperRule(problem.critical_stress) if rule is None else rule
-    decide = early_decision(problem, approach, settings, rule)
+    decide = early_decision(problem, approach, settings, rule, direction)
+    # a pass that comes back to a set already left at this approach would repeat its passes
+    # for ever (cells flipping between the two rules): stop there, and say so
+    visited = {np.packbits(solution.contact).tobytes()}
     for _ in range(4 * problem.face_elements + 10):
         detaching = rule.detaching(solution, approach, settings.tie_tolerance)
+        if isinstance(rule, PaperRule) and detaching.any() and not _tensions_rise(problem, direction):
+            detaching &= ~_falling_at_threshold(problem, solution, approach, settings, rule, direction)
         if solution.displacement_in_window:
             # decided with every free gap known to be open (early_decision): none closes
             free = problem.face & ~solution.contact
@@ -232,7 +307,10 @@ def cascade(
             free, slope, offset = gap_coefficients(problem, solution)
             gap = slope * approach + offset
             gap_tolerance = _gap_tolerance(problem, approach)
-            attaching = (gap < -gap_tolerance) | ((gap <= gap_tolerance) & (slope * direction < 0))
+            # a closing gap re-attaches at zero, to its round-off; an opening one only once it
+            # lies further below zero than CG's error in the displacements explains
+            closed = -_open_tolerance(problem, solution.contact, approach, settings)
+            attaching = (gap < closed) | ((gap <= gap_tolerance) & (slope * direction < 0))
         if not detaching.any() and not attaching.any():
             return solution
         contact = solution.contact.copy()
@@ -244,8 +322,18 @@ def cascade(
         if _certainly_detached(problem, contact, approach, settings):
             counters.cascades_cut += 1
             return no_contact(problem)
+        key = np.packbits(contact).tobytes()
+        if key in visited:
+            messages.append(
+                f"cascade at d = {approach:.6g} came back to a contact set of {int(contact.sum())} elements "
+                f"it had left: the pull stops there"
+            )
+            counters.cycled_cascades += 1
+            break
+        visited.add(key)
         solution = solve_contact_set(problem, contact, settings, solution, counters, decide, approach)
-    messages.append(f"cascade at d = {approach:.6g} did not settle")
+    else:
+        messages.append(f"cascade at d = {approach:.6g} did not settle")
     counters.unsettled_cascades += 1
     if solution.displacement_in_window or solution.at_approach is not None:
         # the caller reads the gaps of the whole face, linear in the approach
@@ -329,17 +417,11 @@ def pull(
                 # the paper's driver: the force after the step's cascade
                 recorder.point(approach, solution)
             outcome.events += 1
+            if counters.cycled_cascades:
+                outcome.aborted = True
+                break
             if outcome.events > max_events:
-                why = ""
-                if problem.work_of_adhesion == 0 and not problem.flat:
-                    # sigma_c = 0 leaves the tie tolerance no slack: an edge cell whose pressure
-                    # falls a round-off short of zero at its event fires the same event again
-                    why = (
-                        " (no adhesion, adhesion.work_of_adhesion = 0: on a curved face the paper's rule with "
-                        "sigma_c = 0 is degenerate at the contact edge, where pressure and gap both vanish; "
-                        "give a positive work of adhesion)"
-                    )
-                outcome.messages.append(f"stopped after {outcome.events} events without detaching{why}")
+                outcome.messages.append(f"stopped after {outcome.events} events without detaching")
                 outcome.aborted = True
                 break
         if not solution.attached or outcome.aborted:

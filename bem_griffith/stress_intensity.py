@@ -70,6 +70,7 @@ from contact_scene import Homogeneous, Scene, SceneError
 __all__ = [
     "DetachmentRule",
     "PaperRule",
+    "pressure_roundoff",
     "StressIntensityRule",
     "FrontFit",
     "fit_front",
@@ -80,6 +81,37 @@ __all__ = [
     "FrontRelease",
     "free_front_release",
 ]
+
+
+#: round-off of a pressure p = d x1 - xh relative to its two parts |d x1| + |xh|: at its event a
+#: cell's tension meets the threshold to a few ulps of them (a hundred, for margin)
+PRESSURE_ROUNDOFF = 1e-14
+
+
+def pressure_roundoff(approach: float, per_approach: np.ndarray, profile: np.ndarray | None = None) -> np.ndarray:
+    """Per contact cell, how far its pressure p = d x1 - xh may lie from the exact value by
+    forming it: ``PRESSURE_ROUNDOFF`` (|d x1| + |xh|).  The paper's rule detaches a cell whose
+    tension lies within it below the threshold: without it, sigma_c = 0 (no adhesion) leaves an
+    event's own cell a round-off short of zero tension, and the event repeats at the same approach.
+
+    Parameters
+    ----------
+    approach : float
+        The approach d.
+    per_approach : numpy.ndarray
+        x1 on the contact set.
+    profile : numpy.ndarray or None, optional
+        xh on the contact set (None on a flat face).
+
+    Returns
+    -------
+    numpy.ndarray
+        The round-off per contact cell, >= 0.
+    """
+    size = np.abs(approach * per_approach)
+    if profile is not None:
+        size = size + np.abs(profile)
+    return PRESSURE_ROUNDOFF * size
 
 
 class DetachmentRule(Protocol):
@@ -109,14 +141,14 @@ class PaperRule:
 
     def threshold(self, tie_tolerance: float) -> float:
         """The tension at or above which a cell detaches: sigma_c less the tie tolerance, so
-        that cells within round-off of the largest tension go together."""
+        that cells within round-off of the largest tension go together (less, per cell, the
+        round-off of its pressure, :func:`pressure_roundoff`)."""
         return self.critical_stress * (1 - tie_tolerance)
 
     def detaching(self, solution, approach: float, tie_tolerance: float) -> np.ndarray:
         tension = -solution.pressure(approach)
-        largest = tension.max() if tension.size else -np.inf
-        threshold = self.threshold(tie_tolerance)
-        return tension >= threshold if largest >= threshold else np.zeros(tension.shape, bool)
+        roundoff = pressure_roundoff(approach, solution.pressure_per_approach, solution.profile_pressure)
+        return tension >= self.threshold(tie_tolerance) - roundoff
 
 
 def front_cells(contact: np.ndarray) -> np.ndarray:
@@ -298,7 +330,8 @@ class StressIntensityRule:
 
     def detaching(self, solution, approach: float, tie_tolerance: float) -> np.ndarray:
         fit = self.front(solution)
-        by_paper = -solution.pressure(approach) >= self.paper.threshold(tie_tolerance)
+        roundoff = pressure_roundoff(approach, solution.pressure_per_approach, solution.profile_pressure)
+        by_paper = -solution.pressure(approach) >= self.paper.threshold(tie_tolerance) - roundoff
         by_paper[fit.cells] = False
         measure = np.full(solution.pressure_per_approach.shape, -np.inf)
         measure[by_paper] = np.inf
