@@ -56,7 +56,8 @@ class PullOutcome:
     events
         Driver steps: events (event driver) or steps (fixed-step driver), each with its cascade.
     aborted
-        The event limit stopped the pull.
+        The event limit stopped the pull, or a cascade came back to a contact set it had left
+        (``WorkCounters.cycled_cascades``).
     reached_user_limit
         The final target was the scene's ``pull_limit`` (then ending attached is the scene's
         strong adhesion, not a failure).
@@ -89,7 +90,9 @@ def next_event(
 ) -> float:
     """The nearest approach between ``approach`` and ``target`` (in the direction of travel)
     at which an element of the contact set meets the detachment ``rule`` (default: Eq. 22,
-    sigma_c) or a free element's gap closes; ``target`` if none."""
+    sigma_c) or a free element's gap closes; ``target`` if none.  Under the paper's rule only
+    a tension that rises along the direction of travel (x1 * direction < 0) makes an event: one
+    that falls crosses sigma_c leaving it."""
     if solution.at_approach is not None:
         raise ValueError("a state decided at one approach is not linear in the approach")
     rule = PaperRule(problem.critical_stress) if rule is None else rule
@@ -165,7 +168,8 @@ def _open_tolerance(problem: Problem, contact: np.ndarray, approach: float, sett
     u = d u1 - uh errs by at most rtol sqrt(n) (|d| + max |h|); twice that.  A cell that left
     at zero pressure (no adhesion: sigma_c = 0) has a gap of zero to within this error, and
     must not re-attach on its noise.  Without the walk property (graded k < 0) the same band,
-    not a bound.  The gap's own round-off (:func:`_gap_tolerance`) where it is larger."""
+    not a bound; on a periodic grid too (its zero-mean kernel has no walk property).  The
+    gap's own round-off (:func:`_gap_tolerance`) where it is larger."""
     n = int(contact.sum())
     if n == 0:
         return _gap_tolerance(problem, approach)
@@ -178,7 +182,9 @@ def _pressure_noise(problem: Problem, contact: np.ndarray, approach: float, sett
     two solves have largest entries of at most rtol sqrt(n) (|d| + max |h|) together (their
     2-norms), and under the walk property each pressure errs by at most twice
     ``inverse_diagonal`` times that (``||r||_2 / eigenvalue_floor`` otherwise); twice the
-    bound, 0 where neither is known."""
+    bound, 0 where neither is known: on a periodic grid, which has neither, a cell that
+    re-attaches at zero pressure (no adhesion, pressed again after a turning point) is not
+    kept at the threshold, leaves again, and the cascade stops as it comes back to a set."""
     n = int(contact.sum())
     if n == 0:
         return 0.0
@@ -229,7 +235,13 @@ def early_decision(
     ``decide(contact, x1, displacement, error, displacement_error=None)``
     (``bem_griffith.contact_set.Decision``): ``error`` bounds each pressure's error,
     ``displacement_error`` each free displacement's (by default ``kernel_norm * error``).  None
-    where it does not apply."""
+    where it does not apply.  ``direction`` is the cascade's direction of travel (-1 pulling):
+    where tensions may fall along it (``_tensions_rise`` false: pressing, or a kernel without
+    the walk property) the test declines whenever a leaving cell lies within CG's pressure
+    error (``_pressure_noise``) of the threshold, since the pass then needs that cell's x1
+    (``_falling_at_threshold``); on graded k < 0 with a loose rtol (1e-6 and above) that
+    declines more often than before, so such pulls take more full solves and their forces
+    differ from a pull without this test at the level of rtol (same contact sets)."""
     if not (settings.decide_early and isinstance(rule, PaperRule) and approach != 0):
         return None
     threshold = rule.threshold(settings.tie_tolerance)

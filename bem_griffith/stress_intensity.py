@@ -141,8 +141,9 @@ class PaperRule:
 
     def threshold(self, tie_tolerance: float) -> float:
         """The tension at or above which a cell detaches: sigma_c less the tie tolerance, so
-        that cells within round-off of the largest tension go together (less, per cell, the
-        round-off of its pressure, :func:`pressure_roundoff`)."""
+        that cells within round-off of the largest tension go together.  :meth:`detaching`
+        lowers it further, per cell, by the round-off of its pressure
+        (:func:`pressure_roundoff`); this value does not include it."""
         return self.critical_stress * (1 - tie_tolerance)
 
     def detaching(self, solution, approach: float, tie_tolerance: float) -> np.ndarray:
