@@ -177,22 +177,34 @@ def _open_tolerance(problem: Problem, contact: np.ndarray, approach: float, sett
     return max(_gap_tolerance(problem, approach), 2.0 * settings.rtol * math.sqrt(n) * size)
 
 
+def _periodic_floor(problem: Problem, n: int) -> float | None:
+    """A lower bound on the eigenvalues of every C_SS with n cells on a periodic grid of N:
+    the circulant C has the symbol's values as eigenvalues, zero for the mean (its kernel has
+    none) and at least s' (the smallest of the others) elsewhere, so x.C x >= s' (||x||^2 -
+    (sum x)^2 / N) >= s' (1 - n / N) ||x||^2.  None if that is not positive."""
+    values = problem.operator.symbol.ravel()[1:]  # all modes but the mean's
+    if values.size == 0:
+        return None
+    floor = float(values.min()) * (1.0 - n / problem.face.size)
+    return floor if floor > 0 else None
+
+
 def _pressure_noise(problem: Problem, contact: np.ndarray, approach: float, settings: GriffithSettings) -> float:
     """CG's error in the pressures p = d x1 - xh of a set solved to rtol.  The residuals of the
     two solves have largest entries of at most rtol sqrt(n) (|d| + max |h|) together (their
     2-norms), and under the walk property each pressure errs by at most twice
-    ``inverse_diagonal`` times that (``||r||_2 / eigenvalue_floor`` otherwise); twice the
-    bound, 0 where neither is known: on a periodic grid, which has neither, a cell that
-    re-attaches at zero pressure (no adhesion, pressed again after a turning point) is not
-    kept at the threshold, leaves again, and the cascade stops as it comes back to a set."""
+    ``inverse_diagonal`` times that (``||r||_2 / eigenvalue_floor`` otherwise, on a periodic
+    grid with the circulant's floor, :func:`_periodic_floor`); twice the bound, 0 where none
+    is known."""
     n = int(contact.sum())
     if n == 0:
         return 0.0
     residual = settings.rtol * math.sqrt(n) * (abs(approach) + float(np.abs(problem.height[contact]).max()))
     if problem.walk_bounds and problem.inverse_diagonal is not None:
         return 2.0 * 2.0 * problem.inverse_diagonal * residual
-    if problem.eigenvalue_floor is not None:
-        return 2.0 * residual / problem.eigenvalue_floor
+    floor = _periodic_floor(problem, n) if problem.operator.periodic else problem.eigenvalue_floor
+    if floor is not None:
+        return 2.0 * residual / floor
     return 0.0
 
 
@@ -237,11 +249,11 @@ def early_decision(
     ``displacement_error`` each free displacement's (by default ``kernel_norm * error``).  None
     where it does not apply.  ``direction`` is the cascade's direction of travel (-1 pulling):
     where tensions may fall along it (``_tensions_rise`` false: pressing, or a kernel without
-    the walk property) the test declines whenever a leaving cell lies within CG's pressure
-    error (``_pressure_noise``) of the threshold, since the pass then needs that cell's x1
-    (``_falling_at_threshold``); on graded k < 0 with a loose rtol (1e-6 and above) that
-    declines more often than before, so such pulls take more full solves and their forces
-    differ from a pull without this test at the level of rtol (same contact sets)."""
+    the walk property) the test declines while a leaving cell may lie within CG's pressure
+    error (``_pressure_noise``, plus the iterate's own) of the threshold and its tension may
+    fall, since the pass then needs that cell's x1 (``_falling_at_threshold``).  On a flat face
+    the iterate is x1, to within ``error``, so a leaver whose tension certainly rises passes; on
+    a curved face it is p / d, which says nothing of x1."""
     if not (settings.decide_early and isinstance(rule, PaperRule) and approach != 0):
         return None
     threshold = rule.threshold(settings.tie_tolerance)
@@ -267,8 +279,16 @@ def early_decision(
         leaving = distance >= 0  # as the pass detaches (``PaperRule.detaching``)
         if not leaving.any():
             return False  # nothing leaves (this set may hold)
-        if not rising and (tension[leaving] < threshold + _pressure_noise(problem, contact, approach, settings)).any():
-            return False  # a leaver within CG's noise of the threshold: the pass needs its x1
+        if not rising:
+            # a leaver whose tension may lie within CG's noise of the threshold (the iterate's
+            # error added) stays in the pass if it falls: the pass needs its x1, which a flat
+            # face's iterate is, to within ``error``; a curved face's is p / d
+            noise = _pressure_noise(problem, contact, approach, settings) + abs(approach) * error
+            near = tension[leaving] < threshold + noise
+            if problem.flat:
+                near &= ~(x1[leaving] * direction < -error)  # certainly rising
+            if near.any():
+                return False
         if np.abs(distance[leaving] if walk else distance).min() <= abs(approach) * error:
             return False  # a tension is too close to call
         free = problem.face & ~contact

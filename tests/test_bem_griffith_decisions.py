@@ -589,18 +589,22 @@ def test_a_cascade_that_comes_back_to_a_set_stops_and_says_so():
     assert any("came back to a contact set" in m for m in messages), messages
 
 
-def test_without_adhesion_a_curved_face_unloads_and_reloads_along_one_curve():
-    """Without adhesion the contact problem at each approach has one solution (C is positive
-    definite), so unloading to a turning point, pressing again and unloading must trace one
-    force curve, piecewise linear between events.  On the way back in a cell re-attaches
-    with zero pressure as its gap closes: it must stay (its tension, zero to CG's noise, falls
-    along the direction of travel), and its crossing of the threshold is no event."""
+@pytest.mark.parametrize("periodic", [False, True], ids=["isolated", "periodic"])
+def test_without_adhesion_a_curved_face_unloads_and_reloads_along_one_curve(periodic):
+    """Without adhesion the contact problem at each approach has one solution (C_SS is
+    positive definite), so unloading to a turning point, pressing again and unloading must
+    trace one force curve, piecewise linear between events.  On the way back in a cell
+    re-attaches with zero pressure as its gap closes: it must stay (its tension, zero to CG's
+    noise, falls along the direction of travel), and its crossing of the threshold is no
+    event.  On a periodic grid CG's noise is bounded through the circulant's smallest
+    non-zero eigenvalue."""
     sc = dataclasses.replace(
         SUITE["jkr_sphere"],
         adhesion=cs.Adhesion(0.0),
         loading=cs.Loading(press_approach=0.15, turning_points=(0.05, 0.1)),
     )
-    r = bg.solve(sc, settings(12))
+    grid = cs.Grid(elements_per_radius=12, periodic=periodic, period=1.2 if periodic else None)
+    r = bg.solve(sc, bg.GriffithSettings(grid=grid))
     assert r.converged, r.messages
     d, F = r.curve.approach, r.curve.force
     first = int(np.flatnonzero(d == 0.05)[0])
@@ -615,3 +619,33 @@ def test_without_adhesion_a_curved_face_unloads_and_reloads_along_one_curve():
         both = x >= down.min()
         assert both.sum() > 10
         assert np.max(np.abs(np.interp(x[both], down, Fdown) - y[both])) <= 1e-9 * F.max()
+
+
+def test_periodic_floor_bounds_every_contact_submatrix():
+    """On a periodic grid the circulant C's eigenvalues are its symbol's values, zero for the
+    mean: every C_SS of n of the N cells has no eigenvalue below s' (1 - n / N), s' the
+    smallest non-zero one (``_periodic_floor``, which bounds CG's pressure error there).
+    Checked against dense eigenvalues for the face and random subsets; and not vacuous: within
+    a factor 3 of the smallest eigenvalue of a set of a tenth of the cells."""
+    sc = cs.Scene(
+        cs.Indenter(cs.Circle(0.42), cs.Paraboloid(1.0)),
+        cs.Homogeneous(0.75, 0.5),
+        cs.Adhesion(0.0),
+        cs.Loading(press_approach=0.15),
+    )
+    problem = bg.solver.build_problem(
+        sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=6, periodic=True, period=1.2))
+    )
+    nx, ny = problem.face.shape
+    rows, cols = np.divmod(np.arange(nx * ny), ny)
+    C = problem.operator.kernel[(rows[:, None] - rows[None, :]) % nx, (cols[:, None] - cols[None, :]) % ny]
+    rng = np.random.default_rng(3)
+    subsets = [problem.face.ravel()] + [rng.random(nx * ny) < f for f in (0.1, 0.5, 0.9, 0.99)]
+    for S in subsets:
+        n = int(S.sum())
+        floor = bg.driver._periodic_floor(problem, n)
+        smallest = np.linalg.eigvalsh(C[np.ix_(S, S)])[0]
+        assert floor is not None and 0 < floor <= smallest * (1 + 1e-12), (n, floor, smallest)
+    tenth = subsets[1]
+    assert bg.driver._periodic_floor(problem, int(tenth.sum())) > np.linalg.eigvalsh(C[np.ix_(tenth, tenth)])[0] / 3
+    assert bg.driver._periodic_floor(problem, nx * ny) is None  # the whole cell holds the mean's zero mode
