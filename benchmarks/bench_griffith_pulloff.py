@@ -3,6 +3,7 @@
     python benchmarks/bench_griffith_pulloff.py [--star512] [--update]
     python benchmarks/bench_griffith_pulloff.py --ties [--update]
     python benchmarks/bench_griffith_pulloff.py --curved [--update]
+    python benchmarks/bench_griffith_pulloff.py --profile [--star512] [--update]
 
 For each case: median wall and CPU time of the pull-off, the median time of one bare padded
 FFT convolution (scipy.fft rfft2 -> multiply -> irfft2) at the same padded size, the ratio of
@@ -24,7 +25,10 @@ docs/performance_griffith_choices.json and docs/performance_griffith_ties.json (
 docs/performance.md by ``python benchmarks/docs_tables.py``).  ``--curved`` pulls the JKR
 sphere (homogeneous and graded) with the cascade's early decisions and with every contact set
 solved to rtol, alternated: CPU times, work and whether the answer moved; ``--update`` writes
-docs/performance_griffith_curved.json.
+docs/performance_griffith_curved.json.  ``--profile`` splits the star's pull-off at 128^2 and
+256^2 (and 512^2 with ``--star512``) into the solves of passing and of holding contact sets and
+into double-precision operator products and single-precision preconditioner applications
+(their CPU shares); ``--update`` writes docs/performance_griffith_profile.json.
 
     python benchmarks/bench_griffith_pulloff.py --baseline [REV] [--update]
 
@@ -354,6 +358,120 @@ def curved(update: bool) -> None:
         _timing.write_doc_table("performance_griffith_curved", CURVED_HEADERS, rows, record)
 
 
+PROFILE_HEADERS = [
+    "case",
+    "grid",
+    "cpu s",
+    "events",
+    "solves / event",
+    "passing solves",
+    "their cpu share",
+    "products / passing solve",
+    "holding solves",
+    "their cpu share",
+    "products / holding solve",
+    "operator products (double)",
+    "their cpu share",
+    "preconditioner (single)",
+    "their cpu share",
+]
+
+
+def profile(star512: bool, update: bool) -> None:
+    """Where a star's pull-off spends its time: the contact solves of a cascade's passing sets
+    (decided early, ``GriffithSettings.decide_early``) against those of the sets that hold
+    (solved to rtol), and the double-precision operator products against the single-precision
+    preconditioner's, each timed (CPU) around the solver's own calls in one run; written to
+    docs/performance_griffith_profile.json with ``update``.  The instrumentation costs a few
+    microseconds a call, so the shares, not the totals, are the measure."""
+    import bem_griffith.driver as driver
+    from halfspace.operator import HalfSpaceOperator
+
+    star = cs.Scene(cs.Indenter(cs.Star(5, 1.0, 0.45)), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
+    cells = [128, 256] + ([512] if star512 else [])
+    record = _timing.provenance_record()
+    rows = []
+    tally: dict = {}
+
+    def timed(key, fn):
+        def wrapper(*args, **kwargs):
+            start, products = time.process_time(), tally["products"]
+            try:
+                return fn(*args, **kwargs)
+            finally:
+                entry = tally.setdefault(key, [0, 0.0, 0])
+                entry[0] += 1
+                entry[1] += time.process_time() - start
+                entry[2] += tally["products"] - products
+
+        return wrapper
+
+    def counted(key, fn):
+        def wrapper(*args, **kwargs):
+            tally["products"] += 1
+            return timed(key, fn)(*args, **kwargs)
+
+        return wrapper
+
+    originals = (driver.solve_contact_set, HalfSpaceOperator.apply_masked, HalfSpaceOperator.apply_symbol)
+
+    def solve(problem, contact, settings, warm_start, counters, *args):
+        decided = counters.decided_solves
+        start, products = time.process_time(), tally["products"]
+        state = originals[0](problem, contact, settings, warm_start, counters, *args)
+        key = "passing" if counters.decided_solves > decided else "holding"
+        entry = tally.setdefault(key, [0, 0.0, 0])
+        entry[0] += 1
+        entry[1] += time.process_time() - start
+        entry[2] += tally["products"] - products
+        return state
+
+    try:
+        driver.solve_contact_set = solve
+        HalfSpaceOperator.apply_masked = counted("operator", originals[1])
+        HalfSpaceOperator.apply_symbol = counted("preconditioner", originals[2])
+        for n in cells:
+            tally.clear()
+            tally["products"] = 0
+            N = n * star.indenter.shape.equivalent_radius / 2.0
+            cpu = time.process_time()
+            r = bg.solve(star, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N)))
+            cpu = time.process_time() - cpu
+            nx, ny = r.info["grid"]
+
+            def share(key, cpu=cpu):
+                return f"{tally.get(key, [0, 0.0])[1] / cpu:.2f}"
+
+            def per_solve(key):
+                count, _, products = tally.get(key, [0, 0.0, 0])
+                return f"{products / max(count, 1):.1f}"
+
+            rows.append(
+                [
+                    f"star {n}^2",
+                    f"{nx}x{ny}",
+                    f"{cpu:.1f}",
+                    r.info["events"],
+                    f"{r.info['solves'] / max(r.info['events'], 1):.2f}",
+                    tally.get("passing", [0])[0],
+                    share("passing"),
+                    per_solve("passing"),
+                    tally.get("holding", [0])[0],
+                    share("holding"),
+                    per_solve("holding"),
+                    tally.get("operator", [0])[0],
+                    share("operator"),
+                    tally.get("preconditioner", [0])[0],
+                    share("preconditioner"),
+                ]
+            )
+            print(_timing.table(rows, PROFILE_HEADERS), flush=True)
+    finally:
+        driver.solve_contact_set, HalfSpaceOperator.apply_masked, HalfSpaceOperator.apply_symbol = originals
+    if update:
+        _timing.write_doc_table("performance_griffith_profile", PROFILE_HEADERS, rows, record)
+
+
 ROOT = Path(__file__).resolve().parent.parent
 #: the solver before the in-place transforms and the energy-norm decision bounds
 BASELINE = "b5fc263"
@@ -462,5 +580,7 @@ if __name__ == "__main__":
         ties(update="--update" in sys.argv)
     elif "--curved" in sys.argv:
         curved(update="--update" in sys.argv)
+    elif "--profile" in sys.argv:
+        profile(star512="--star512" in sys.argv, update="--update" in sys.argv)
     else:
         main(star512="--star512" in sys.argv, update="--update" in sys.argv)
