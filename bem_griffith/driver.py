@@ -223,11 +223,12 @@ def _falling_at_threshold(
     direction: float,
 ) -> np.ndarray:
     """The contact cells whose tension lies above the threshold by less than CG's error in the
-    pressures and falls along the direction of travel (x1 d moves p up): at the threshold and
-    leaving it, so they stay.  Without adhesion (sigma_c = 0) a cell that re-attaches as its
-    gap closes carries a pressure of zero, to CG's noise, and would otherwise leave again at
-    once.  Asked only where some tension may fall (``_tensions_rise``); there a decided state,
-    whose x1 is not known, has no leaving cell in that band (``early_decision`` waits)."""
+    pressures and falls along the direction of travel (x1 times the direction positive: p
+    rises): at the threshold and leaving it, so they stay.  Without adhesion (sigma_c = 0) a
+    cell that re-attaches as its gap closes carries a pressure of zero, to CG's noise, and
+    would otherwise leave again at once.  Asked only where some tension may fall
+    (``_tensions_rise``); there a decided state has no leaving cell in that band whose tension
+    may fall (``early_decision`` waits for it)."""
     tension = -solution.pressure(approach)
     noise = _pressure_noise(problem, solution.contact, approach, settings)
     return (tension < rule.threshold(settings.tie_tolerance) + noise) & (solution.pressure_per_approach * direction > 0)
