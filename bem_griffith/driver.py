@@ -104,8 +104,7 @@ def next_event(
         # only a tension that rises along the direction of travel meets sigma_c there; one that
         # falls crosses it leaving (a cell kept at the threshold by ``_falling_at_threshold``)
         at_critical_stress = np.where(solution.pressure_per_approach * direction < 0, at_critical_stress, np.nan)
-    with np.errstate(invalid="ignore"):
-        ahead = (at_critical_stress - approach) * direction >= -eps
+    ahead = (at_critical_stress - approach) * direction >= -eps
     if ahead.any():
         candidates = at_critical_stress[ahead]
         first = candidates.max() if direction < 0 else candidates.min()
@@ -160,21 +159,27 @@ def _gap_tolerance(problem: Problem, approach: float) -> float:
     return 1e-12 * max(abs(approach), problem.spacing * 1e-6)
 
 
+def _residual_bound(problem: Problem, contact: np.ndarray, approach: float, settings: GriffithSettings) -> float:
+    """The largest residual entry a set solved to rtol may leave, for x1 and xh together: each
+    at most its 2-norm, rtol sqrt(n) times that of the right-hand side (1 for x1, h for xh),
+    so rtol sqrt(n) (|d| + max |h|) for the state at d; 0 for an empty set.  Both noise bands
+    (:func:`_open_tolerance`, :func:`_pressure_noise`) scale it."""
+    n = int(contact.sum())
+    if n == 0:
+        return 0.0
+    return settings.rtol * math.sqrt(n) * (abs(approach) + float(np.abs(problem.height[contact]).max()))
+
+
 def _open_tolerance(problem: Problem, contact: np.ndarray, approach: float, settings: GriffithSettings) -> float:
     """How far below zero the gap of a free cell that is opening may lie before the cell
     re-attaches: CG's error in the displacements.  Under the walk property a free cell's
-    displacement error is a sub-probability average of the residual, whose largest entry is at
-    most its 2-norm, rtol sqrt(n) times that of the right-hand side (1 for x1, h for xh), so
-    u = d u1 - uh errs by at most rtol sqrt(n) (|d| + max |h|); twice that.  A cell that left
-    at zero pressure (no adhesion: sigma_c = 0) has a gap of zero to within this error, and
-    must not re-attach on its noise.  Without the walk property (graded k < 0) the same band,
-    not a bound; on a periodic grid too (its zero-mean kernel has no walk property).  The
-    gap's own round-off (:func:`_gap_tolerance`) where it is larger."""
-    n = int(contact.sum())
-    if n == 0:
-        return _gap_tolerance(problem, approach)
-    size = abs(approach) + float(np.abs(problem.height[contact]).max())
-    return max(_gap_tolerance(problem, approach), 2.0 * settings.rtol * math.sqrt(n) * size)
+    displacement error is a sub-probability average of the residual, so u = d u1 - uh errs by
+    at most :func:`_residual_bound`; twice that.  A cell that left at zero pressure (no
+    adhesion: sigma_c = 0) has a gap of zero to within this error, and must not re-attach on
+    its noise.  Without the walk property (graded k < 0) the same band, not a bound; on a
+    periodic grid too (its zero-mean kernel has no walk property).  The gap's own round-off
+    (:func:`_gap_tolerance`) where it is larger."""
+    return max(_gap_tolerance(problem, approach), 2.0 * _residual_bound(problem, contact, approach, settings))
 
 
 def _periodic_floor(problem: Problem, n: int) -> float | None:
@@ -190,19 +195,17 @@ def _periodic_floor(problem: Problem, n: int) -> float | None:
 
 
 def _pressure_noise(problem: Problem, contact: np.ndarray, approach: float, settings: GriffithSettings) -> float:
-    """CG's error in the pressures p = d x1 - xh of a set solved to rtol.  The residuals of the
-    two solves have largest entries of at most rtol sqrt(n) (|d| + max |h|) together (their
-    2-norms), and under the walk property each pressure errs by at most twice
-    ``inverse_diagonal`` times that (``||r||_2 / eigenvalue_floor`` otherwise, on a periodic
-    grid with the circulant's floor, :func:`_periodic_floor`); twice the bound, 0 where none
-    is known."""
-    n = int(contact.sum())
-    if n == 0:
+    """CG's error in the pressures p = d x1 - xh of a set solved to rtol: under the walk
+    property each errs by at most twice ``inverse_diagonal`` times the residual's largest
+    entry (:func:`_residual_bound`), otherwise by at most the residual over
+    ``eigenvalue_floor`` (on a periodic grid the circulant's floor, :func:`_periodic_floor`);
+    twice the bound, 0 where none is known."""
+    residual = _residual_bound(problem, contact, approach, settings)
+    if residual == 0.0:
         return 0.0
-    residual = settings.rtol * math.sqrt(n) * (abs(approach) + float(np.abs(problem.height[contact]).max()))
     if problem.walk_bounds and problem.inverse_diagonal is not None:
         return 2.0 * 2.0 * problem.inverse_diagonal * residual
-    floor = _periodic_floor(problem, n) if problem.operator.periodic else problem.eigenvalue_floor
+    floor = _periodic_floor(problem, int(contact.sum())) if problem.operator.periodic else problem.eigenvalue_floor
     if floor is not None:
         return 2.0 * residual / floor
     return 0.0
