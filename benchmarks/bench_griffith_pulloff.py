@@ -393,23 +393,20 @@ def profile(star512: bool, update: bool) -> None:
     rows = []
     tally: dict = {}
 
-    def timed(key, fn):
-        def wrapper(*args, **kwargs):
-            start, products = time.process_time(), tally["products"]
-            try:
-                return fn(*args, **kwargs)
-            finally:
-                entry = tally.setdefault(key, [0, 0.0, 0])
-                entry[0] += 1
-                entry[1] += time.process_time() - start
-                entry[2] += tally["products"] - products
-
-        return wrapper
+    def account(key, start, products):
+        entry = tally.setdefault(key, [0, 0.0, 0])
+        entry[0] += 1
+        entry[1] += time.process_time() - start
+        entry[2] += tally["products"] - products
 
     def counted(key, fn):
         def wrapper(*args, **kwargs):
+            start = time.process_time()
             tally["products"] += 1
-            return timed(key, fn)(*args, **kwargs)
+            try:
+                return fn(*args, **kwargs)
+            finally:
+                account(key, start, tally["products"])
 
         return wrapper
 
@@ -419,11 +416,7 @@ def profile(star512: bool, update: bool) -> None:
         decided = counters.decided_solves
         start, products = time.process_time(), tally["products"]
         state = originals[0](problem, contact, settings, warm_start, counters, *args)
-        key = "passing" if counters.decided_solves > decided else "holding"
-        entry = tally.setdefault(key, [0, 0.0, 0])
-        entry[0] += 1
-        entry[1] += time.process_time() - start
-        entry[2] += tally["products"] - products
+        account("passing" if counters.decided_solves > decided else "holding", start, products)
         return state
 
     try:
