@@ -59,17 +59,18 @@ class ContactWindow:
 
 
 class WindowMemo:
-    """The last few windows' operators and preconditioners, keyed by window shape; contact
-    sets mostly shrink, so the oldest are forgotten first."""
+    """The last few windows' operators and preconditioners, keyed by window shape and whether
+    the window mirrors (its padded rows then even); contact sets mostly shrink, so the oldest
+    are forgotten first."""
 
     def __init__(self, capacity: int = WINDOW_MEMO):
         self.capacity = capacity
-        self._entries: dict[tuple[int, int], tuple[HalfSpaceOperator, np.ndarray | None]] = {}
+        self._entries: dict[tuple, tuple[HalfSpaceOperator, np.ndarray | None]] = {}
 
-    def get(self, shape: tuple[int, int], build):
-        entry = self._entries.get(shape)
+    def get(self, key: tuple, build):
+        entry = self._entries.get(key)
         if entry is None:
-            entry = self._entries[shape] = build()
+            entry = self._entries[key] = build()
             while len(self._entries) > self.capacity:
                 self._entries.pop(next(iter(self._entries)))
         return entry
@@ -98,11 +99,17 @@ def window_for(problem: Problem, contact: np.ndarray) -> ContactWindow | None:
     nx, ny = contact.shape
     wx = window_length(nx, int(rows[-1] - rows[0] + 1))
     wy = window_length(ny, int(cols[-1] - cols[0] + 1))
-    if np.prod(padded_shape(wx, wy)) > WINDOW_GAIN * np.prod(problem.operator.padded_shape):
+    # a set that mirrors about the grid's middle row gets a window centred there, so that it
+    # mirrors in the window too and its products take the half-size transforms; its extent has
+    # the parity of nx, so a window one row shorter still holds it where the parity differs
+    mirrored = int(rows[0] + rows[-1]) == nx - 1 and bool(np.array_equal(contact, contact[::-1]))
+    if mirrored and (nx - wx) % 2:
+        wx -= 1
+    if np.prod(padded_shape(wx, wy, even_rows=mirrored)) > WINDOW_GAIN * np.prod(problem.operator.padded_shape):
         return None
 
     def build():
-        operator = problem.operator.window((wx, wy))
+        operator = problem.operator.window((wx, wy), even_rows=mirrored)
         inverse = (
             inverse_lattice_symbol(operator.padded_shape, problem.spacing, problem.point_kernel)
             if problem.inverse_symbol is not None and problem.point_kernel is not None
@@ -110,7 +117,7 @@ def window_for(problem: Problem, contact: np.ndarray) -> ContactWindow | None:
         )
         return operator, inverse
 
-    operator, inverse = problem.windows.get((wx, wy), build)
+    operator, inverse = problem.windows.get((wx, wy, mirrored), build)
     # the window starts at the set's first row/column unless that would run off the grid
-    i0, j0 = min(int(rows[0]), nx - wx), min(int(cols[0]), ny - wy)
+    i0, j0 = (nx - wx) // 2 if mirrored else min(int(rows[0]), nx - wx), min(int(cols[0]), ny - wy)
     return ContactWindow(slice(i0, i0 + wx), slice(j0, j0 + wy), operator, inverse)

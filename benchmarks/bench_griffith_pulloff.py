@@ -30,13 +30,14 @@ docs/performance_griffith_curved.json.  ``--profile`` splits the star's pull-off
 into double-precision operator products and single-precision preconditioner applications
 (their CPU shares); ``--update`` writes docs/performance_griffith_profile.json.
 
-    python benchmarks/bench_griffith_pulloff.py --baseline [REV] [--update]
+    python benchmarks/bench_griffith_pulloff.py --baseline [REV] [--star512] [--update]
 
 compares the solver with its state at git revision REV (``bem_griffith`` and ``halfspace``
-extracted with ``git archive``; default BASELINE) on the star at 128^2 and 256^2 and the circle
-at 128 per radius: each case runs in fresh subprocesses, old and new alternated, and the table
-shows their CPU times, the ratio of the medians, the work counted and whether the answer moved
-(same contact areas along the curve, F_A to how many digits).  ``--update`` writes
+extracted with ``git archive``; default BASELINE) on the star at 128^2 and 256^2 (and 512^2 with
+``--star512``, once each) and the circle at 128 per radius: each case runs in fresh
+subprocesses, old and new alternated, and the table shows their CPU times, the ratio of the
+medians, the work counted and whether the answer moved (same contact areas along the curve,
+F_A to how many digits).  ``--update`` writes
 docs/performance_griffith_baseline.json.
 """
 
@@ -513,10 +514,11 @@ def child(name: str) -> None:
     )
 
 
-def against_baseline(rev: str, update: bool) -> None:
-    """The table against revision ``rev``, old and new alternated in fresh subprocesses."""
+def against_baseline(rev: str, update: bool, star512: bool = False) -> None:
+    """The table against revision ``rev``, old and new alternated in fresh subprocesses (with
+    ``star512`` the paper's 512^2 star too, once each)."""
     record = _timing.provenance_record()
-    cases = [("circle 128", 3), ("star 128^2", 3), ("star 256^2", 2)]
+    cases = [("circle 128", 3), ("star 128^2", 3), ("star 256^2", 2)] + ([("star 512^2", 1)] if star512 else [])
     rows, precise = [], []
     with tempfile.TemporaryDirectory() as tmp:
         _timing.extract_revision(rev, ["bem_griffith", "halfspace"], tmp)
@@ -568,7 +570,7 @@ if __name__ == "__main__":
     elif "--baseline" in sys.argv:
         following = sys.argv[sys.argv.index("--baseline") + 1 :]
         revision = following[0] if following and not following[0].startswith("--") else BASELINE
-        against_baseline(revision, update="--update" in sys.argv)
+        against_baseline(revision, update="--update" in sys.argv, star512="--star512" in sys.argv)
     elif "--ties" in sys.argv:
         ties(update="--update" in sys.argv)
     elif "--curved" in sys.argv:

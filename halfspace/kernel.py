@@ -216,22 +216,27 @@ def zero_mean_image_sum(integral, n: int, spacing: float, *, images: int = 16, k
     return (second * r2 - r1) / (second - 1.0)
 
 
-def padded_shape(nx: int, ny: int) -> tuple[int, int]:
+def padded_shape(nx: int, ny: int, *, even_rows: bool = False) -> tuple[int, int]:
     """Smallest FFT-friendly padded size that holds a linear convolution of an nx x ny grid.
 
     Parameters
     ----------
     nx, ny : int
         Cells of the grid along x and y, >= 1.
+    even_rows : bool, optional
+        Mx even (twice a fast length), as the half-size transforms of a mirror-symmetric
+        product need (``HalfSpaceOperator``).
 
     Returns
     -------
     tuple of int
-        (Mx, My), each the smallest fast real-FFT length >= 2n - 1.
+        (Mx, My), each the smallest fast real-FFT length >= 2n - 1 (Mx the smallest even one
+        with ``even_rows``).
     """
     import scipy.fft as sfft
 
-    return (sfft.next_fast_len(2 * nx - 1, real=True), sfft.next_fast_len(2 * ny - 1, real=True))
+    Mx = 2 * sfft.next_fast_len(nx, real=True) if even_rows else sfft.next_fast_len(2 * nx - 1, real=True)
+    return (Mx, sfft.next_fast_len(2 * ny - 1, real=True))
 
 
 def graded_square_integral(x, y, half_width: float, k: float):

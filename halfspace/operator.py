@@ -114,6 +114,70 @@ class HalfSpaceOperator:
         _pocketfft.c2c(spectrum, (0,), False, 2, spectrum, workers)
         return _pocketfft.c2r(spectrum[:nx], (1,), My, False, 2, None, workers)
 
+    def _mirrored(self, rows: np.ndarray, s: np.ndarray) -> np.ndarray:
+        """:meth:`_pruned` for input rows that mirror about the grid's middle row
+        (rows[i] == rows[nx - 1 - i]); (nx, ny) output, mirror-symmetric exactly.
+
+        Along the padded rows the input is then even about the middle, and so is the output
+        (the kernel is even): the row-axis transform pair of period Mx is a cosine pair over
+        half the rows (DCT-II and -III about a half-sample centre for even nx, DCT-I about the
+        middle row for odd nx), and the column transforms run on half the rows too.  Equal to
+        the full transform's product to round-off (``tests/test_halfspace.py``)."""
+        nx, ny = self.shape
+        _, My = self.kernel.shape
+        dtype = rows.dtype
+        centre = nx // 2  # rows centre .. nx - 1 carry the half (for odd nx, from the middle row)
+        half_rows, spectrum, half_symbol = self._mirror_buffers(dtype, s)
+        workers = self.workers
+        view = spectrum.view(dtype)  # real and imaginary parts side by side, both transformed
+        m = nx - centre
+        _pocketfft.r2c(rows[centre:], (1,), True, 0, spectrum[:m], workers)
+        spectrum[m:] = 0.0
+        if nx % 2 == 0:
+            _pocketfft.dct(view, 2, (0,), 0, view, workers)
+            np.multiply(view, half_symbol, out=view)
+            _pocketfft.dct(view, 3, (0,), 2, view, workers)  # over 2 N = Mx
+        else:
+            _pocketfft.dct(view, 1, (0,), 0, view, workers)
+            np.multiply(view, half_symbol, out=view)
+            _pocketfft.dct(view, 1, (0,), 2, view, workers)  # over 2 (N - 1) = Mx
+        half = _pocketfft.c2r(spectrum[:m], (1,), My, False, 2, half_rows, workers)
+        out = np.empty((nx, ny), dtype)
+        out[centre:] = half[:, :ny]
+        out[: nx - centre] = half[::-1, :ny]
+        return out
+
+    def _mirror_buffers(self, dtype: np.dtype, s: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """This thread's buffers of :meth:`_mirrored` in ``dtype``: the half output rows, the
+        half spectrum (N rows) and the symbol's first N rows, each entry twice (for the real
+        view of the spectrum), kept per symbol array."""
+        if not hasattr(_scratch, "mirror"):
+            _scratch.mirror = weakref.WeakKeyDictionary()
+        mine = _scratch.mirror.setdefault(self, {})
+        nx, _ = self.shape
+        Mx, My = self.kernel.shape
+        N = Mx // 2 if nx % 2 == 0 else Mx // 2 + 1
+        buffers = mine.get(dtype.char)
+        if buffers is None:
+            complex_type = np.complex64 if dtype == np.float32 else np.complex128
+            buffers = mine[dtype.char] = (np.empty((nx - nx // 2, My), dtype), np.empty((N, My // 2 + 1), complex_type))
+        symbols = mine.setdefault("symbols", {})
+        known = symbols.get(id(s))
+        if known is None or known[0]() is not s:
+            known = symbols[id(s)] = (weakref.ref(s), np.repeat(s[:N], 2, axis=1).astype(dtype))
+        return buffers[0], buffers[1], known[1]
+
+    def _mirror_ready(self, grid: np.ndarray) -> bool:
+        """Whether a product of ``grid`` (nx, ny) may take :meth:`_mirrored`: the transforms
+        are at hand, the padded rows are even in number and the grid mirrors exactly."""
+        return (
+            _pocketfft is not None
+            and not self.periodic
+            and self.kernel.shape[0] % 2 == 0
+            and self.shape[0] >= 2
+            and np.array_equal(grid, grid[::-1])
+        )
+
     @property
     def padded_shape(self) -> tuple[int, int]:
         """(Mx, My), the shape of the kernel and of the padded FFT grid."""
@@ -155,7 +219,7 @@ class HalfSpaceOperator:
         c = sfft.ifft(b, axis=0, workers=self.workers, overwrite_x=True)[:nx]
         return sfft.irfft(c, n=My, axis=1, workers=self.workers)[:, :ny]
 
-    def window(self, shape: tuple[int, int]) -> HalfSpaceOperator:
+    def window(self, shape: tuple[int, int], *, even_rows: bool = False) -> HalfSpaceOperator:
         """The same operator on a smaller grid of wx x wy cells (wx <= nx, wy <= ny).
 
         Its coefficients are this kernel's for the offsets such a grid has, on the smaller padded
@@ -166,6 +230,9 @@ class HalfSpaceOperator:
         ----------
         shape : tuple of int
             (wx, wy), with 1 <= wx <= nx and 1 <= wy <= ny.
+        even_rows : bool, optional
+            An even number of padded rows (:func:`~halfspace.padded_shape`), for sets that
+            mirror about the window's middle row.
 
         Returns
         -------
@@ -185,7 +252,7 @@ class HalfSpaceOperator:
         if not (1 <= wx <= nx and 1 <= wy <= ny):
             raise ValueError(f"window {shape} must fit into the grid {self.shape}")
         Mx, My = self.kernel.shape
-        Wx, Wy = padded_shape(wx, wy)
+        Wx, Wy = padded_shape(wx, wy, even_rows=even_rows)
 
         def offsets(W, w, M):
             # the window's index -> offset -> this kernel's index, or -1 for an offset the window lacks
@@ -265,4 +332,6 @@ class HalfSpaceOperator:
         grid = rows[:, :ny]
         grid.fill(0.0)
         grid[mask] = values
+        if self._mirror_ready(grid):
+            return self._mirrored(rows, symbol)
         return self._pruned(rows, symbol)[:, :ny]

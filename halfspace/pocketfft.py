@@ -45,8 +45,8 @@ def norm_factor(n: int, dtype: Any) -> Any:
 
 
 def same_as_scipy_fft(p: Any) -> bool:
-    """Whether ``p``'s ``r2c``, ``c2c`` and ``c2r`` write into the arrays given and compute, bit for
-    bit, what scipy.fft's public transforms do, in double and single precision.
+    """Whether ``p``'s ``r2c``, ``c2c``, ``c2r`` and ``dct`` write into the arrays given and compute,
+    bit for bit, what scipy.fft's public transforms do, in double and single precision.
 
     Parameters
     ----------
@@ -91,6 +91,13 @@ def same_as_scipy_fft(p: Any) -> bool:
                 return False
             if not np.array_equal(whole, sfft.irfft2(half, s=(6, 5))):
                 return False
+            # the cosine transforms of the mirror-symmetric products, in place
+            for kind in (1, 2, 3):
+                column = a.copy()
+                if p.dct(column, kind, (0,), 0, column, 1) is not column:
+                    return False
+                if not np.array_equal(column, sfft.dct(a, type=kind, axis=0)):
+                    return False
         return True
     except Exception as exc:  # any change of the private API: the public path, never a wrong number
         log.debug("pocketfft's in-place transforms unusable (%s): scipy.fft allocates", exc)

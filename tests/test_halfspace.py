@@ -315,7 +315,7 @@ def test_private_in_place_transforms_are_used_only_when_they_equal_scipy_fft():
     assert same_as_scipy_fft(real) and POCKETFFT is real
 
     def mutant(**changes):
-        fns = {name: getattr(real, name) for name in ("r2c", "c2c", "c2r")}
+        fns = {name: getattr(real, name) for name in ("r2c", "c2c", "c2r", "dct")}
         return types.SimpleNamespace(**{**fns, **changes})
 
     def rescaled_c2r(a, axes, n, forward, inorm, out, nthreads):
@@ -335,3 +335,45 @@ def test_private_in_place_transforms_are_used_only_when_they_equal_scipy_fft():
     assert not same_as_scipy_fft(mutant(c2r=rescaled_c2r))
     assert not same_as_scipy_fft(mutant(r2c=fresh_r2c))
     assert not same_as_scipy_fft(mutant(c2c=new_signature))
+
+    def swapped_dct(a, kind, axes, inorm, out, nthreads):
+        return real.dct(a, {1: 1, 2: 3, 3: 2}[kind], axes, inorm, out, nthreads)  # II and III swapped
+
+    assert not same_as_scipy_fft(mutant(dct=swapped_dct))
+
+
+@pytest.mark.parametrize("shape", [(12, 9), (13, 9), (40, 31), (41, 30)], ids=str)
+def test_mirror_symmetric_products_take_half_transforms_and_equal_the_full_ones(shape, monkeypatch):
+    """A pressure that mirrors about the grid's middle row (even and odd row counts) is
+    convolved by cosine transforms over half the rows: the product is the dense matrix's, and
+    the full transforms', to round-off (double) and single precision (float32), and mirrors
+    exactly.  An input off the mirror by one ulp takes the full transforms."""
+    import halfspace.operator as ho
+
+    nx, ny = shape
+    P = padded_shape(nx, ny)
+    if P[0] % 2:
+        P = (P[0] + 1, P[1])  # the half transforms need an even padded row count
+    K = hk.love_influence(nx, ny, 0.3, 1.0, P)
+    op = HalfSpaceOperator(K, (nx, ny))
+    rows, cols = np.divmod(np.arange(nx * ny), ny)
+    C = K[(rows[:, None] - rows[None, :]) % P[0], (cols[:, None] - cols[None, :]) % P[1]]
+    rng = np.random.default_rng(5)
+    mask = rng.random((nx, ny)) < 0.6
+    mask = mask | mask[::-1]
+    p = rng.standard_normal((nx, ny))
+    p = np.where(mask, p + p[::-1], 0.0)
+    calls = []
+    mirrored = ho.HalfSpaceOperator._mirrored
+    monkeypatch.setattr(ho.HalfSpaceOperator, "_mirrored", lambda self, *a: calls.append(1) or mirrored(self, *a))
+    u = op.apply_masked(p[mask], mask)
+    dense = (C[:, mask.ravel()] @ p[mask]).reshape(nx, ny)
+    assert calls and np.array_equal(u, u[::-1])
+    assert np.allclose(u, dense, rtol=0, atol=1e-14 * np.abs(dense).max())
+    u32 = op.apply_symbol(p[mask].astype(np.float32), mask, op.symbol.astype(np.float32))
+    assert np.allclose(u32, dense[mask], rtol=0, atol=1e-6 * np.abs(dense).max())
+    assert len(calls) == 2
+    q = p.copy()
+    q[0, np.flatnonzero(mask[0])[0]] = np.nextafter(q[0, np.flatnonzero(mask[0])[0]], np.inf)
+    u_off = op.apply_masked(q[mask], mask)
+    assert len(calls) == 2 and np.allclose(u_off, dense, rtol=0, atol=1e-14 * np.abs(dense).max())
