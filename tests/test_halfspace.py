@@ -377,3 +377,19 @@ def test_mirror_symmetric_products_take_half_transforms_and_equal_the_full_ones(
     q[0, np.flatnonzero(mask[0])[0]] = np.nextafter(q[0, np.flatnonzero(mask[0])[0]], np.inf)
     u_off = op.apply_masked(q[mask], mask)
     assert len(calls) == 2 and np.allclose(u_off, dense, rtol=0, atol=1e-14 * np.abs(dense).max())
+
+
+def test_an_odd_padded_row_count_keeps_the_full_transforms(monkeypatch):
+    """The cosine pair needs an even number of padded rows: with an odd one (13 rows padded to
+    25) a mirrored pressure takes the full transforms, with the same product."""
+    import halfspace.operator as ho
+
+    nx, ny = 13, 9
+    P = padded_shape(nx, ny)
+    assert P[0] % 2 == 1
+    op = HalfSpaceOperator(hk.love_influence(nx, ny, 0.3, 1.0, P), (nx, ny))
+    p = np.random.default_rng(6).standard_normal((nx, ny))
+    p = p + p[::-1]
+    everywhere = np.ones((nx, ny), bool)
+    monkeypatch.setattr(ho.HalfSpaceOperator, "_mirrored", lambda self, *a: pytest.fail("half transforms"))
+    assert np.array_equal(op.apply_masked(p[everywhere], everywhere), op.convolve(p))
