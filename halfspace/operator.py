@@ -47,7 +47,10 @@ class HalfSpaceOperator:
     of a plain padded rfft2/irfft2 pair; measured in ``benchmarks/bench_matvec.py``).  The
     transforms run in place in buffers each thread keeps per operator (pocketfft's own entry
     points, which take an output array), so that a product allocates and copies only its
-    result; the numbers are those of scipy.fft's allocating transforms, bit for bit.
+    result; the numbers are those of scipy.fft's allocating transforms, bit for bit.  A masked
+    product whose pressure mirrors exactly about the grid's middle row (with an even number of
+    padded rows) runs the row-axis pair as cosine transforms over half the rows instead
+    (``_mirrored``): the same product to round-off, mirrored exactly.
 
     Parameters
     ----------
