@@ -331,8 +331,7 @@ class StressIntensityRule:
 
     def detaching(self, solution, approach: float, tie_tolerance: float) -> np.ndarray:
         fit = self.front(solution)
-        roundoff = pressure_roundoff(approach, solution.pressure_per_approach, solution.profile_pressure)
-        by_paper = -solution.pressure(approach) >= self.paper.threshold(tie_tolerance) - roundoff
+        by_paper = self.paper.detaching(solution, approach, tie_tolerance)
         by_paper[fit.cells] = False
         measure = np.full(solution.pressure_per_approach.shape, -np.inf)
         measure[by_paper] = np.inf
