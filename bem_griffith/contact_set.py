@@ -15,6 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from halfspace.operator import mirrors
+
 from .counters import WorkCounters
 from .linear import CGResult, conjugate_gradient
 from .problem import SAMPLING_MARGIN, Problem
@@ -106,11 +108,6 @@ def no_contact(problem: Problem) -> ContactSolution:
     return ContactSolution(np.zeros(problem.face.shape, bool), np.zeros(0), np.zeros(0), zero, zero, 0, 0.0, True)
 
 
-def _mirrors(mask: np.ndarray) -> bool:
-    """Whether a grid mask mirrors about its middle row."""
-    return bool(np.array_equal(mask, mask[::-1]))
-
-
 def solve_contact_set(
     problem: Problem,
     contact: np.ndarray,
@@ -159,8 +156,6 @@ def solve_contact_set(
             counters.operator_applications += 1
             return operator.apply_symbol(residual, contact_in_window, inverse)
 
-    mirrored_face = _mirrors(problem.face) and _mirrors(problem.height)
-
     def initial_guess(
         pressures_on_previous_set: np.ndarray | None, image_of_previous: np.ndarray, rhs_on_grid: np.ndarray | float
     ) -> np.ndarray | None:
@@ -170,7 +165,7 @@ def solve_contact_set(
         full[warm_start.contact] = pressures_on_previous_set
         if settings.local_warm_start:
             local_correction(full, warm_start.contact, image_of_previous, rhs_on_grid)
-        if mirrored_face and _mirrors(contact) and _mirrors(warm_start.contact):
+        if mirrors(contact) and mirrors(warm_start.contact) and mirrors(problem.face) and mirrors(problem.height):
             # on a face and profile that mirror about the grid's middle row, a mirrored start on
             # a mirrored set keeps every CG iterate mirrored, and each product then takes the
             # half-size transforms (``HalfSpaceOperator``); the dense solve of the local

@@ -11,7 +11,7 @@ import numpy as np
 import scipy.fft as sfft
 
 from halfspace.kernel import padded_shape
-from halfspace.operator import HalfSpaceOperator
+from halfspace.operator import HalfSpaceOperator, mirrors
 
 from .preconditioner import inverse_lattice_symbol
 
@@ -102,7 +102,7 @@ def window_for(problem: Problem, contact: np.ndarray) -> ContactWindow | None:
     # a set that mirrors about the grid's middle row gets a window centred there, so that it
     # mirrors in the window too and its products take the half-size transforms; its extent has
     # the parity of nx, so a window one row shorter still holds it where the parity differs
-    mirrored = int(rows[0] + rows[-1]) == nx - 1 and bool(np.array_equal(contact, contact[::-1]))
+    mirrored = int(rows[0] + rows[-1]) == nx - 1 and mirrors(contact)
     if mirrored and (nx - wx) % 2:
         wx -= 1
     if np.prod(padded_shape(wx, wy, even_rows=mirrored)) > WINDOW_GAIN * np.prod(problem.operator.padded_shape):

@@ -15,7 +15,7 @@ from .kernel import padded_shape
 # None (scipy.fft's allocating path) where they are missing or differ
 from .pocketfft import POCKETFFT as _pocketfft
 
-__all__ = ["HalfSpaceOperator", "default_workers"]
+__all__ = ["HalfSpaceOperator", "default_workers", "mirrors"]
 
 #: each thread's transform buffers, per operator (kept out of the operator, which stays picklable)
 _scratch = threading.local()
@@ -34,6 +34,22 @@ def default_workers() -> int:
         The number of FFT workers, 1.
     """
     return 1
+
+
+def mirrors(grid: np.ndarray) -> bool:
+    """Whether a grid array equals its mirror image about its middle row (rows i and
+    n - 1 - i), exactly: the products of such a pressure take the half-size transforms.
+
+    Parameters
+    ----------
+    grid : numpy.ndarray
+        An (nx, ny) array (values or a mask).
+
+    Returns
+    -------
+    bool
+    """
+    return bool(np.array_equal(grid, grid[::-1]))
 
 
 @dataclass(frozen=True, eq=False)
@@ -178,7 +194,7 @@ class HalfSpaceOperator:
             and not self.periodic
             and self.kernel.shape[0] % 2 == 0
             and self.shape[0] >= 2
-            and np.array_equal(grid, grid[::-1])
+            and mirrors(grid)
         )
 
     @property
