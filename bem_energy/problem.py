@@ -156,6 +156,11 @@ class EnergyProblem:
     face_block: np.ndarray = field(init=False, repr=False)
     #: per-thread transform buffers (:meth:`_transform`, :meth:`_spectrum`)
     _scratch: threading.local = field(init=False, repr=False)
+    #: the mirrored transforms' half (:meth:`_mirrored`): (its first row, its rows), or None
+    #: where the face, the profile or the padded grid does not mirror
+    _mirror: tuple[int, int] | None = field(init=False, repr=False)
+    #: each factor's first rows for :meth:`_mirrored`, twice each (the spectrum's real view)
+    _half_factors: dict = field(init=False, repr=False)
 
     def __post_init__(self):
         # a product with a reciprocal, not a quotient: a complex division costs several
@@ -178,6 +183,8 @@ class EnergyProblem:
         object.__setattr__(self, "symbol_factor_single", symbol_single)
         object.__setattr__(self, "face_block", self.crop(self.face).copy())
         object.__setattr__(self, "_scratch", threading.local())
+        object.__setattr__(self, "_mirror", self._mirror_layout())
+        object.__setattr__(self, "_half_factors", {})
 
     def _buffer(self, name: str, shape: tuple[int, int], dtype) -> np.ndarray:
         """This thread's work array ``name``, allocated once per problem.  The transforms of a
@@ -199,6 +206,69 @@ class EnergyProblem:
         # scipy.fft.rfft2's own call, into ``out``: the same numbers
         return _pocketfft.r2c(U, (0, 1), True, 0, out, 1)
 
+    def _mirror_layout(self) -> tuple[int, int] | None:
+        """Where a mirrored array's half lies on the padded grid, or None.
+
+        The face (in rows 0 .. nx - 1) and its profile mirror about the half-sample centre
+        c / 2, c = nx - 1 odd, and so does the padded grid of even period M, whose rows i and
+        (c - i) mod M then pair up: an array with U[i] = U[(c - i) mod M] for every row is even
+        about c / 2 and about c / 2 + M / 2, both half-sample centres, and its rows nx / 2 ..
+        nx / 2 + M / 2 - 1 carry it (a DCT-II's data).  A raster anchored at a mirror-symmetric
+        face's centroid has an even nx (:func:`contact_scene.rasterise`); an odd nx or M keeps
+        the full transforms.  Returns (first row, number of rows)."""
+        nx, _ = self.n
+        M, _ = self.padded
+        if _pocketfft is None or M % 2 or nx % 2:
+            return None
+        height = np.zeros(self.face_block.shape)
+        height[self.face_block] = self.height
+        if not (np.array_equal(self.face_block, self.face_block[::-1]) and np.array_equal(height, height[::-1])):
+            return None
+        return nx // 2, M // 2
+
+    def _mirrors(self, A: np.ndarray) -> bool:
+        """Whether ``A`` equals its mirror image about the face's middle row, exactly (row i
+        and row (nx - 1 - i) mod M on the padded grid of M rows)."""
+        nx, _ = self.n
+        M, _ = self.padded
+        h, q = nx // 2, (M - nx) // 2
+        face_rows = np.array_equal(A[:h], A[nx - 1 : nx - 1 - h : -1])
+        return bool(face_rows and np.array_equal(A[nx : nx + q], A[M - 1 : M - 1 - q : -1]))
+
+    def _mirrored(self, A: np.ndarray, factor: np.ndarray, out: np.ndarray) -> np.ndarray:
+        """:meth:`_transform` of an array that mirrors (:meth:`_mirrors`), over half the rows.
+
+        Along the rows the array is even about two centres (:meth:`_mirror_layout`), and so is
+        the product (the kernel is even): the row-axis transform pair of period M is a DCT-II
+        and -III over the half's rows (unnormalised, their round trip is M times the identity,
+        as the complex pair's is), and the column transforms run on those rows only.  The other
+        rows are copied from their mirror images, so the product mirrors exactly and the
+        minimisers' iterates, which the products and cell-by-cell operations make, stay mirrored
+        once started mirrored.  Equal to the full transform to round-off
+        (``tests/test_energy_mirror.py``)."""
+        assert self._mirror is not None
+        first, rows = self._mirror
+        nx, _ = self.n
+        _, My = self.padded
+        dtype = A.dtype
+        half = slice(first, first + rows)
+        complex_type = np.complex64 if dtype == np.float32 else np.complex128
+        spectrum = self._buffer(f"mirror_spectrum_{dtype.char}", (rows, My // 2 + 1), complex_type)
+        view = spectrum.view(dtype)  # real and imaginary parts side by side, both transformed
+        half_factor = self._half_factors.get(id(factor))
+        if half_factor is None:
+            # the three factors are this problem's own arrays, alive as long as it is
+            half_factor = self._half_factors[id(factor)] = np.repeat(factor[:rows], 2, axis=1)
+        _pocketfft.r2c(A[half], (1,), True, 0, spectrum, 1)
+        _pocketfft.dct(view, 2, (0,), 0, view, 1)
+        np.multiply(view, half_factor, out=view)
+        _pocketfft.dct(view, 3, (0,), 0, view, 1)
+        _pocketfft.c2r(spectrum, (1,), My, False, 0, out[half], 1)
+        # row i's mirror image is row (nx - 1 - i) mod M, in the half just written
+        out[:first] = out[nx - 1 : first - 1 : -1]
+        out[first + rows :] = out[first + rows - 1 : nx - 1 : -1]
+        return out
+
     def _transform(self, A: np.ndarray, factor: np.ndarray, out: np.ndarray) -> np.ndarray:
         """irfft2(rfft2(A) * factor) into ``out``, in the precision of ``A`` and ``out``, with
         ``factor`` carrying the inverse's 1/n (``inverse_factor`` and the like)."""
@@ -207,6 +277,8 @@ class EnergyProblem:
             F *= factor
             np.copyto(out, sfft.irfft2(F, s=self.padded, norm="forward", overwrite_x=True))
             return out
+        if self._mirror is not None and self._mirrors(A):
+            return self._mirrored(A, factor, out)
         F = self._spectrum(A)
         F *= factor
         # the inverse one axis at a time (pocketfft's own order), unnormalised: the 2-D call
