@@ -5,7 +5,7 @@ fitted by a convergence study that shows it covers the method's error; the bar n
 
 * bem_griffith: ``bem_griffith.error_model`` (``benchmarks/study_error_models.py``): c/N plus the
   local criterion's plateau plus the result's own staircase area defect, per quantity; faces
-  with corners against the 1/N limit of their own sequence; graded faces with the calibrated
+  with corners against the reference table's converged values; graded faces with the calibrated
   criterion add the calibration's terms, and on the flat circle their pull-off is a calibration
   residual (``role="calibration"``), not a validation.
 * fem_reference: its per-quantity bounds (degree pair plus truncation; tests/test_fem_reference.py:
