@@ -55,9 +55,10 @@ FIT_FROM = 16
 GRADED_KS = (-0.5, 0.5, 0.9)
 #: the cornered faces' pull-off has no closed form: its error (the force scaled to the nominal
 #: area) is measured against the reference table's converged value over these resolutions
-#: (crossval/references/faces.json: the energy BEM's zero-range limit for both faces, which the
-#: Griffith BEM's own 1/N limit agrees with; that limit, recorded beside the errors, was the
-#: reference before the table existed, and lies 0.5 % above the table's on the triangle)
+#: (crossval/references/faces.json: the energy BEM's zero-range limit for both faces).  The
+#: Griffith sequence's own 1/N limit, recorded beside the errors, agrees with it within the bars
+#: but lies 0.5 % above it on the triangle: errors against that limit understate those against
+#: the table
 CORNER_NS = (16, 23, 32, 45, 64, 90, 128)
 #: the sequence's own 1/N limit is fitted over these (the coarser two lie before the
 #: first-order regime)

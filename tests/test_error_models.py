@@ -52,8 +52,8 @@ def test_cornered_pulloff_bars_cover_the_reference_table(face, N):
     """The square's and triangle's pull-off bars, fitted at N = 16 ... 128 against the reference
     table's converged value, cover the error against it at resolutions between those grids (the
     staircase moves the error by a per cent from grid to grid) and on the full report's finest
-    triangle (64, on the sweep: a bar fitted to the Griffith sequence's own 1/N limit fell short
-    there), and stay within a few times the resolution's first-order term."""
+    triangle (64, on the sweep, where a bar fitted to the Griffith sequence's own 1/N limit falls
+    short), and stay within a few times the resolution's first-order term."""
     from crossval import face_references
     from crossval.suite import load_scene_or_builtin
 
