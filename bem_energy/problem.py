@@ -25,6 +25,7 @@ from contact_scene import Homogeneous, PowerLawGraded, Scene, SceneError, raster
 from contact_scene.discretisation import finest_elements_per_radius
 from halfspace.collocation import collocated_graded_influence, collocated_influence
 from halfspace.kernel import graded_influence, love_influence
+from halfspace.operator import mirrors
 
 # pocketfft's own entry points write into a given array (``out``), which scipy.fft's do not;
 # None (scipy.fft's allocating calls) where they are missing or differ from scipy.fft
@@ -222,7 +223,7 @@ class EnergyProblem:
             return None
         height = np.zeros(self.face_block.shape)
         height[self.face_block] = self.height
-        if not (np.array_equal(self.face_block, self.face_block[::-1]) and np.array_equal(height, height[::-1])):
+        if not (mirrors(self.face_block) and mirrors(height)):
             return None
         return nx // 2, M // 2
 
