@@ -22,7 +22,7 @@ from halfspace.kernel import (
 from halfspace.operator import HalfSpaceOperator
 
 from .criterion import stress_factor
-from .preconditioner import inverse_lattice_symbol
+from .preconditioner import inverse_lattice_symbol, lattice_inverse_diagonal
 from .settings import GriffithSettings
 from .windows import WindowMemo, windows_memory_bytes
 
@@ -30,7 +30,8 @@ __all__ = ["Problem", "build_problem", "estimate_memory_gb", "max_elements_per_r
 
 #: the factor by which a quantity of the element lattice's symbol, taken from its samples on the
 #: padded grid, is widened into a bound: the samples leave out aliases and the frequencies between
-#: them (the eigenvalue floor is halved, the inverse diagonal and the energy r.M r doubled)
+#: them (the eigenvalue floor is halved and the energy r.M r doubled; the inverse diagonal has a
+#: bound of its own, ``bem_griffith.preconditioner.lattice_inverse_diagonal``)
 SAMPLING_MARGIN = 2.0
 #: the interval of graded exponents k on which no off-diagonal coefficient of the element
 #: lattice's C^-1 is taken to be positive: computed at k = 0, 0.1, 0.25, 0.5, 0.75, 0.9 and 0.95
@@ -76,11 +77,11 @@ class Problem:
         The Euclidean norm of all influence coefficients: |(C e)_i| <= kernel_norm ||e||_2 at
         any cell i (Cauchy-Schwarz), which bounds the error of the displacements.
     inverse_diagonal
-        An upper bound on every diagonal entry of every C_SS^-1: twice the mean of the lattice
-        symbol's inverse over the Brillouin zone, sampled on the padded grid (the mean itself is
-        the diagonal of the infinite lattice's inverse, which bounds that of every finite
-        section from above; the factor 2 covers the sampling, as for ``eigenvalue_floor``);
-        None without the Fourier preconditioner or on a periodic grid.  With it the energy
+        An upper bound on every diagonal entry of every C_SS^-1: the mean of the lattice
+        symbol's inverse over the Brillouin zone, which is the diagonal D0 of the infinite
+        lattice's inverse and bounds that of every finite section from above, sampled finely
+        and widened by 1 % (``bem_griffith.preconditioner.lattice_inverse_diagonal``); None
+        without the Fourier preconditioner or on a periodic grid.  With it the energy
         norm of a CG iterate's error bounds each pressure's error (``bem_griffith.contact_set``).
     self_influence
         C_00, the displacement of a cell under its own unit pressure: for a cell i outside S,
@@ -244,20 +245,7 @@ def build_problem(scene: Scene, settings: GriffithSettings) -> Problem:
         windows=WindowMemo() if settings.shrink_window and not periodic else None,
         eigenvalue_floor=floor if floor is not None and floor > 0 else None,
         kernel_norm=float(np.sqrt(np.sum(kernel**2))),
-        inverse_diagonal=None
-        if inverse is None or periodic
-        else SAMPLING_MARGIN * full_spectrum_mean(inverse, operator.padded_shape[1]),
+        inverse_diagonal=None if inverse is None or periodic else lattice_inverse_diagonal(h, point_kernel),
         self_influence=float(kernel[0, 0]),
         walk_bounds=not periodic and WALK_EXPONENTS[0] <= point_kernel[1] <= WALK_EXPONENTS[1],
     )
-
-
-def full_spectrum_mean(half: np.ndarray, width: int) -> float:
-    """The mean over the whole padded spectrum of a real even function given on the half
-    spectrum (Mx, width // 2 + 1) of an rfft2 of ``width`` columns: every column but the zero
-    frequency (and, for an even width, the Nyquist one) stands for two."""
-    weights = np.full(half.shape[1], 2.0)
-    weights[0] = 1.0
-    if width % 2 == 0:
-        weights[-1] = 1.0
-    return float(np.sum(half.astype(float) * weights) / (half.shape[0] * width))

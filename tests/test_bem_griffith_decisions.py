@@ -79,11 +79,13 @@ def test_energy_bounds_hold_for_every_contact_submatrix(material, shape):
       eigenvalue of C_SS^-1 against M_SS): the error's energy norm from the preconditioned
       residual;
     * (C_SS^-1)_ii <= ``inverse_diagonal`` for every i in S (the infinite lattice's diagonal,
-      sampled, times SAMPLING_MARGIN), and not wastefully so (within 2.5);
+      from a fine sample of its inverse symbol), and not wastefully so (within 2 %: a whole
+      face's interior cells come within 0.1 % of the lattice's diagonal);
     * c.C_SS^-1 c < C_00 = ``self_influence`` for every free cell's influences c.
 
-    The sampled values alone fall short of the dense ones (by 0.4-1.1 % and 0.1-0.4 % on these
-    grids): without SAMPLING_MARGIN both first bounds fail."""
+    The sampled r.M r alone falls short of the dense r.C_SS^-1 r on these grids: without
+    SAMPLING_MARGIN the first bound fails.  The diagonal's bound is also tested against the
+    lattice itself (``tests/test_bem_griffith_ties.py``)."""
     problem = bg.solver.build_problem(scene(shape, material), settings(9 if isinstance(shape, cs.Circle) else 12))
     C = dense_operator(problem)
     Mx, My = problem.operator.padded_shape
@@ -105,7 +107,7 @@ def test_energy_bounds_hold_for_every_contact_submatrix(material, shape):
             c = C[np.ix_(subset, free)]
             assert np.einsum("if,ij,jf->f", c, inverse, c).max() < problem.self_influence
     assert 1.0 < largest_energy_ratio <= bg.problem.SAMPLING_MARGIN
-    assert largest_diagonal <= problem.inverse_diagonal <= 2.5 * largest_diagonal
+    assert largest_diagonal <= problem.inverse_diagonal <= 1.02 * largest_diagonal
 
 
 @MATERIALS

@@ -25,8 +25,10 @@ import pytest
 
 import bem_griffith as bg
 import contact_scene as cs
+from bem_griffith import preconditioner
 from bem_griffith.counters import WorkCounters
 from bem_griffith.driver import cascade
+from bem_griffith.preconditioner import lattice_inverse_diagonal
 from bem_griffith.press import pressed_state
 from bem_griffith.problem import WALK_EXPONENTS, build_problem
 from bem_griffith.stress_intensity import PaperRule
@@ -234,6 +236,39 @@ def _section_row(k: float, reach: int, offsets) -> np.ndarray:
     centre = reach * n + reach
     row = np.linalg.solve(_block(_influence_table(k, n, n), cells, cells), np.eye(n * n)[centre])
     return np.array([row[(reach + a) * n + reach + b] for a, b in offsets]) / row[centre]
+
+
+def _lattice_diagonal(k: float) -> tuple[float, float]:
+    """The lattice inverse's diagonal coefficient D0 at unit spacing, extrapolated in n^-(3-k)
+    from the tori of 32 and 64 cells, and the change from the extrapolation of 16 and 32."""
+
+    def extrapolated(n):
+        coarse, fine = _lattice_inverse(k, n // 2)[0, 0], _lattice_inverse(k, n)[0, 0]
+        return fine + (fine - coarse) / (2.0 ** (3.0 - k) - 1.0)
+
+    return float(extrapolated(64)), float(abs(extrapolated(64) - extrapolated(32)))
+
+
+def _diagonal_bound(k: float) -> float:
+    # the point kernel of the tori's coefficients: 1 / (pi E*) at k = 0 (E* = 1), r^-(1+k) otherwise
+    return lattice_inverse_diagonal(1.0, (1.0 / math.pi if k == 0 else 1.0, k))
+
+
+@pytest.mark.parametrize("k", [-0.9, -0.5, 0.0, 0.5, 0.95])
+def test_the_inverse_diagonal_bound_holds_the_lattice_diagonal(k):
+    # the bound the early decisions take for every (C_SS^-1)_ii (``Problem.inverse_diagonal``),
+    # from the lattice symbol in Fourier space, against D0 from the solver's own coefficients on
+    # tori in real space: above it, and by little (the decisions wait on it)
+    diagonal, error = _lattice_diagonal(k)
+    assert diagonal + error <= _diagonal_bound(k) <= 1.02 * diagonal
+
+
+def test_an_inverse_diagonal_bound_without_its_margin_is_caught(monkeypatch):
+    # five aliases, no margin: the sampled mean then lies below D0 at k = 0.5
+    monkeypatch.setattr(preconditioner, "DIAGONAL_ALIASES", 5)
+    monkeypatch.setattr(preconditioner, "DIAGONAL_MARGIN", 1.0)
+    diagonal, error = _lattice_diagonal(0.5)
+    assert _diagonal_bound(0.5) < diagonal - error
 
 
 @pytest.mark.parametrize("k", [WALK_EXPONENTS[0], 0.1, 0.25, 0.5, 0.75, 0.9, WALK_EXPONENTS[1]])
