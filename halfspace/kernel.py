@@ -400,15 +400,14 @@ def lattice_symbol(padded: tuple[int, int], spacing: float, transform, *, terms:
     kx = 2.0 * math.pi * np.fft.fftfreq(Mx, d=h)[:, None]
     ky = 2.0 * math.pi * np.fft.rfftfreq(My, d=h)[None, :]
     total = np.zeros((Mx, My // 2 + 1))
-    for mx in range(-terms, terms + 1):
-        qx = kx + 2.0 * math.pi * mx / h
-        sx = np.sinc(qx * h / (2.0 * math.pi))
-        for my in range(-terms, terms + 1):
-            qy = ky + 2.0 * math.pi * my / h
-            q = np.hypot(qx, qy)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                total += np.where(
-                    q > 0, transform(np.where(q > 0, q, 1.0)) * sx * np.sinc(qy * h / (2.0 * math.pi)), 0.0
-                )
+    shifted_y = [ky + 2.0 * math.pi * my / h for my in range(-terms, terms + 1)]
+    sinc_y = [np.sinc(qy * h / (2.0 * math.pi)) for qy in shifted_y]
+    # abs(q) vanishes only at the zero frequency's own alias, entry [0, 0], set to inf below
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for mx in range(-terms, terms + 1):
+            qx = kx + 2.0 * math.pi * mx / h
+            sx = np.sinc(qx * h / (2.0 * math.pi))
+            for qy, sy in zip(shifted_y, sinc_y, strict=True):
+                total += transform(np.hypot(qx, qy)) * sx * sy
     total[0, 0] = np.inf
     return total
