@@ -138,9 +138,9 @@ def solve_contact_set(
     residual whose round-off, near d = 0, far exceeds rtol)."""
     window = window_for(problem, contact)
     if window is None:
-        operator, contact_in_window, inverse = problem.operator, contact, problem.inverse_symbol
+        operator, contact_in_window, preconditioner = problem.operator, contact, problem.preconditioner
     else:
-        operator, inverse = window.operator, window.inverse_symbol
+        operator, preconditioner = window.operator, window.preconditioner
         counters.windowed_solves += 1
         # the set lies inside the window, so its row-major order there is its order on the grid
         contact_in_window = contact[window.rows, window.cols]
@@ -150,11 +150,11 @@ def solve_contact_set(
         return operator.apply_masked(v, contact_in_window)
 
     precondition = None
-    if inverse is not None:
+    if preconditioner is not None:
 
         def precondition(residual):
             counters.operator_applications += 1
-            return operator.apply_symbol(residual, contact_in_window, inverse)
+            return preconditioner.apply(residual, contact_in_window)
 
     def initial_guess(
         pressures_on_previous_set: np.ndarray | None, image_of_previous: np.ndarray, rhs_on_grid: np.ndarray | float
@@ -222,10 +222,10 @@ def solve_contact_set(
         rhs_size = max(1.0, float(np.abs(rhs_on_grid[contact]).max()))
     if decide is not None and (problem.flat or combined) and floor is not None:
         tried_displacements = False
-        # with the lattice's inverse symbol as the preconditioner, r.M r bounds the energy norm
-        # of the error (below), a bound markedly tighter than ||r||_2 / floor
+        # with the lattice's inverse symbol on the padded grid as the preconditioner, r.M r bounds
+        # the energy norm of the error (below), a bound markedly tighter than ||r||_2 / floor
         inverse_diagonal = problem.inverse_diagonal
-        energy_bounds = precondition is not None and inverse_diagonal is not None
+        energy_bounds = preconditioner is not None and preconditioner.padded and inverse_diagonal is not None
 
         # where the lattice's C^-1 is a random walk's (``Problem.walk_bounds``) the residual's
         # largest entry bounds the errors too, often more tightly than its energy

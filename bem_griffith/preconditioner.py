@@ -2,11 +2,18 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
+import scipy.fft as sfft
 
 from halfspace.kernel import lattice_symbol, point_kernel_transform
+from halfspace.operator import HalfSpaceOperator
 
 __all__ = [
+    "FourierPreconditioner",
+    "fourier_preconditioner",
+    "compact_period",
     "inverse_lattice_symbol",
     "lattice_inverse_diagonal",
     "DIAGONAL_SAMPLES",
@@ -64,3 +71,65 @@ def lattice_inverse_diagonal(spacing: float, point_kernel: tuple[float, float]) 
     weights = np.full(symbol.shape[1], 2.0)  # the half spectrum of an even n: columns 1..n/2-1 stand for two
     weights[[0, -1]] = 1.0
     return DIAGONAL_MARGIN * float(np.sum(inverse * weights) / (n * n))
+
+
+@dataclass(frozen=True, eq=False)
+class FourierPreconditioner:
+    """M, an approximation of C_SS^-1: the element lattice's inverse symbol applied to a
+    residual on the contact set as a circular convolution over ``operator``'s period, the
+    result taken on the set.
+
+    operator
+        The circulant M on the contact grid (``HalfSpaceOperator`` with ``periodic``): its
+        kernel is the inverse symbol's, over a period at least the grid's.
+    inverse_symbol
+        The inverse symbol on the period's half spectrum, in single precision (the products
+        are computed in it: a preconditioner needs no more, and it halves their cost).
+    padded
+        Whether the period holds the grid zero-padded to at least 2 n - 1 in both directions,
+        so that M restricted to the grid is a section of the infinite lattice's inverse, as
+        sampled: then r.M r bounds the energy norm of a CG error (``SAMPLING_MARGIN``).  A
+        compact period (:func:`compact_period`) wraps, and gives no such bound: a residual
+        that is smooth over the whole grid meets M's smallest modes."""
+
+    operator: HalfSpaceOperator
+    inverse_symbol: np.ndarray
+    padded: bool
+
+    @property
+    def period(self) -> tuple[int, int]:
+        return self.operator.padded_shape
+
+    def apply(self, residual: np.ndarray, mask: np.ndarray) -> np.ndarray:
+        """M r on ``mask`` (row-major order of ``mask``), for r given there."""
+        return self.operator.apply_symbol(residual, mask, self.inverse_symbol)
+
+
+def compact_period(shape: tuple[int, int]) -> tuple[int, int]:
+    """The smallest FFT-friendly period holding a grid of ``shape`` without padding, with an
+    even number of rows (for the mirrored products of ``HalfSpaceOperator``)."""
+    nx, ny = shape
+    rows = sfft.next_fast_len(nx, real=True)
+    while rows % 2:
+        rows = sfft.next_fast_len(rows + 1, real=True)
+    return rows, sfft.next_fast_len(ny, real=True)
+
+
+def fourier_preconditioner(
+    shape: tuple[int, int],
+    period: tuple[int, int],
+    spacing: float,
+    point_kernel: tuple[float, float],
+    *,
+    padded: bool,
+    workers: int = 1,
+    inverse: np.ndarray | None = None,
+) -> FourierPreconditioner:
+    """The Fourier preconditioner of contact sets on a grid of ``shape``, over ``period``:
+    the padded FFT grid of the half-space operator (``padded``), or
+    :func:`compact_period` (``padded=False``); ``inverse``, if given, is
+    :func:`inverse_lattice_symbol` on ``period``, already computed."""
+    if inverse is None:
+        inverse = inverse_lattice_symbol(period, spacing, point_kernel)
+    kernel = sfft.irfft2(inverse.astype(float), s=period)
+    return FourierPreconditioner(HalfSpaceOperator(kernel, shape, workers, periodic=True), inverse, padded)

@@ -22,7 +22,13 @@ from halfspace.kernel import (
 from halfspace.operator import HalfSpaceOperator
 
 from .criterion import stress_factor
-from .preconditioner import inverse_lattice_symbol, lattice_inverse_diagonal
+from .preconditioner import (
+    FourierPreconditioner,
+    compact_period,
+    fourier_preconditioner,
+    inverse_lattice_symbol,
+    lattice_inverse_diagonal,
+)
 from .settings import GriffithSettings
 from .windows import WindowMemo, windows_memory_bytes
 
@@ -37,6 +43,10 @@ SAMPLING_MARGIN = 2.0
 #: lattice's C^-1 is taken to be positive: computed at k = 0, 0.1, 0.25, 0.5, 0.75, 0.9 and 0.95
 #: (``tests/test_bem_griffith_ties.py``), not between them; it fails at k = -0.1
 WALK_EXPONENTS = (0.0, 0.95)
+#: whether problems with the walk property take the preconditioner over a compact period (each
+#: product about a third of the padded one's cost, for a few per cent more CG iterations);
+#: their early decisions bound errors by the residual's largest entry, which needs no r.M r
+COMPACT_PRECONDITIONER = True
 
 
 @dataclass(frozen=True, eq=False, kw_only=True)
@@ -59,8 +69,11 @@ class Problem:
         E* of a homogeneous body; None for a graded one.
     work_of_adhesion
         w.
-    inverse_symbol
-        The Fourier preconditioner on the padded grid, or None.
+    preconditioner
+        The Fourier preconditioner of CG (``bem_griffith.preconditioner``), or None: over a
+        compact period where ``walk_bounds`` holds (the early decisions' error bounds then come
+        from the residual's largest entry, which needs no preconditioner), else over the padded
+        grid, where r.M r bounds the energy of CG's error.
     circle_critical_approach
         area -> the critical approach of a circular face of that area (Eq. 14's upper bound;
         Eq. 39's circle for graded bodies); None without adhesion.
@@ -109,7 +122,7 @@ class Problem:
     flat: bool
     effective_modulus: float | None
     work_of_adhesion: float
-    inverse_symbol: np.ndarray | None = None
+    preconditioner: FourierPreconditioner | None = None
     circle_critical_approach: Callable[[float], float] | None = None
     point_kernel: tuple[float, float] | None = None
     windows: WindowMemo | None = None
@@ -130,10 +143,13 @@ class Problem:
 
 def estimate_memory_gb(nx: int, ny: int) -> float:
     """Working memory of a solve on an nx x ny grid: the padded kernel, its transform and
-    scratch, two complex transforms in flight, the remembered windows and a dozen face-grid
-    vectors."""
+    scratch, two complex transforms in flight, the preconditioner's circulant (at most on the
+    padded grid: kernel, symbol and float32 inverse symbol), the remembered windows and a
+    dozen face-grid vectors."""
     padded = 4 * nx * ny
-    return (padded * 8 * 3 + padded * 16 * 3 + windows_memory_bytes(padded) + nx * ny * 8 * 12) / 1e9
+    return (
+        padded * 8 * 3 + padded * 16 * 3 + padded * (12 + 2) + windows_memory_bytes(padded) + nx * ny * 8 * 12
+    ) / 1e9
 
 
 def max_elements_per_radius(scene: Scene, max_memory_gb: float | None = None) -> float:
@@ -206,6 +222,26 @@ def build_problem(scene: Scene, settings: GriffithSettings) -> Problem:
     inverse = (
         inverse_lattice_symbol(operator.padded_shape, h, point_kernel) if settings.preconditioner == "fourier" else None
     )
+    walk_bounds = not periodic and WALK_EXPONENTS[0] <= point_kernel[1] <= WALK_EXPONENTS[1]
+    preconditioner = None
+    if inverse is not None:
+        # without padding a product costs about a quarter of the padded one's transforms, for a
+        # few per cent more CG iterations; its r.M r bounds nothing, which the walk bounds spare
+        preconditioner = (
+            fourier_preconditioner(
+                (nx, ny), compact_period((nx, ny)), h, point_kernel, padded=False, workers=settings.workers
+            )
+            if walk_bounds and COMPACT_PRECONDITIONER
+            else fourier_preconditioner(
+                (nx, ny),
+                operator.padded_shape,
+                h,
+                point_kernel,
+                padded=not periodic,
+                workers=settings.workers,
+                inverse=inverse,
+            )
+        )
     scale = float(np.abs(kernel).max())
     largest_inverse = None if inverse is None else float(inverse.max())
     # C_00 ~ h / E*: lengths and moduli whose ratio leaves floating point (the single-precision
@@ -239,7 +275,7 @@ def build_problem(scene: Scene, settings: GriffithSettings) -> Problem:
         flat=scene.indenter.profile.is_flat,
         effective_modulus=E,
         work_of_adhesion=w,
-        inverse_symbol=inverse,
+        preconditioner=preconditioner,
         circle_critical_approach=circle_approach,
         point_kernel=point_kernel,
         windows=WindowMemo() if settings.shrink_window and not periodic else None,
@@ -247,5 +283,5 @@ def build_problem(scene: Scene, settings: GriffithSettings) -> Problem:
         kernel_norm=float(np.sqrt(np.sum(kernel**2))),
         inverse_diagonal=None if inverse is None or periodic else lattice_inverse_diagonal(h, point_kernel),
         self_influence=float(kernel[0, 0]),
-        walk_bounds=not periodic and WALK_EXPONENTS[0] <= point_kernel[1] <= WALK_EXPONENTS[1],
+        walk_bounds=walk_bounds,
     )

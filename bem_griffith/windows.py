@@ -13,7 +13,7 @@ import scipy.fft as sfft
 from halfspace.kernel import padded_shape
 from halfspace.operator import HalfSpaceOperator, mirrors
 
-from .preconditioner import inverse_lattice_symbol
+from .preconditioner import FourierPreconditioner, compact_period, fourier_preconditioner
 
 if TYPE_CHECKING:
     from .problem import Problem
@@ -41,21 +41,22 @@ WINDOW_MEMO = 3
 def windows_memory_bytes(padded_cells: int) -> float:
     """Bytes the remembered windows of a grid with ``padded_cells`` padded cells may hold:
     WINDOW_MEMO windows of at most WINDOW_GAIN of its cells, each a float64 kernel (8 bytes
-    a cell), its real half-spectrum symbol (4), a float32 preconditioner on the half
-    spectrum (2) and the operator's transform buffers in both precisions (18: the input rows
-    and a complex half spectrum)."""
-    return padded_cells * (8 + 4 + 2 + 18) * WINDOW_MEMO * WINDOW_GAIN
+    a cell), its real half-spectrum symbol (4), the transform buffers in both precisions (18:
+    the input rows and a complex half spectrum; the single-precision ones the
+    preconditioner's), and the preconditioner's circulant at most on the same padded grid: its
+    float64 kernel and symbol (12) and its float32 inverse symbol (2)."""
+    return padded_cells * (8 + 4 + 18 + 12 + 2) * WINDOW_MEMO * WINDOW_GAIN
 
 
 @dataclass(frozen=True, eq=False)
 class ContactWindow:
     """The box [rows, cols] of the face grid a contact set is solved on, its operator and
-    its preconditioner (None when the problem has none)."""
+    its preconditioner (None when the problem has none; padded or compact as the problem's)."""
 
     rows: slice
     cols: slice
     operator: HalfSpaceOperator
-    inverse_symbol: np.ndarray | None
+    preconditioner: FourierPreconditioner | None
 
 
 class WindowMemo:
@@ -65,7 +66,7 @@ class WindowMemo:
 
     def __init__(self, capacity: int = WINDOW_MEMO):
         self.capacity = capacity
-        self._entries: dict[tuple, tuple[HalfSpaceOperator, np.ndarray | None]] = {}
+        self._entries: dict[tuple, tuple[HalfSpaceOperator, FourierPreconditioner | None]] = {}
 
     def get(self, key: tuple, build):
         entry = self._entries.get(key)
@@ -110,14 +111,16 @@ def window_for(problem: Problem, contact: np.ndarray) -> ContactWindow | None:
 
     def build():
         operator = problem.operator.window((wx, wy), even_rows=mirrored)
-        inverse = (
-            inverse_lattice_symbol(operator.padded_shape, problem.spacing, problem.point_kernel)
-            if problem.inverse_symbol is not None and problem.point_kernel is not None
-            else None
+        whole = problem.preconditioner
+        if whole is None or problem.point_kernel is None:
+            return operator, None
+        period = operator.padded_shape if whole.padded else compact_period((wx, wy))
+        preconditioner = fourier_preconditioner(
+            (wx, wy), period, problem.spacing, problem.point_kernel, padded=whole.padded, workers=operator.workers
         )
-        return operator, inverse
+        return operator, preconditioner
 
-    operator, inverse = problem.windows.get((wx, wy, mirrored), build)
+    operator, preconditioner = problem.windows.get((wx, wy, mirrored), build)
     # the window starts at the set's first row/column unless that would run off the grid
     i0, j0 = (nx - wx) // 2 if mirrored else min(int(rows[0]), nx - wx), min(int(cols[0]), ny - wy)
-    return ContactWindow(slice(i0, i0 + wx), slice(j0, j0 + wy), operator, inverse)
+    return ContactWindow(slice(i0, i0 + wx), slice(j0, j0 + wy), operator, preconditioner)

@@ -6,7 +6,10 @@ Prints medians and ratios measured in one run: ours (pruned transforms) / bare
 (scipy.fft rfft2 -> multiply -> irfft2 on the padded grid), for float64 and for the float32
 preconditioner path, a pressure that mirrors about the grid's middle row through the solver's
 masked product (its half-size cosine transforms, the scatter onto the grid and the mirror
-check included), and pyfftw's bare convolution when pyfftw is installed.
+check included), in double precision and, as the Fourier preconditioner takes it, in single
+precision over the padded grid and over the compact period
+(``bem_griffith.preconditioner.compact_period``, no zero padding), and pyfftw's bare
+convolution when pyfftw is installed.
 """
 
 from __future__ import annotations
@@ -19,6 +22,7 @@ import _timing  # sets thread counts before numpy loads
 import numpy as np
 import scipy.fft as sfft
 
+from bem_griffith.preconditioner import compact_period, fourier_preconditioner
 from halfspace.kernel import love_influence, padded_shape
 from halfspace.operator import HalfSpaceOperator, default_workers
 
@@ -30,6 +34,8 @@ HEADERS = [
     "ours/bare",
     "f32/bare",
     "mirrored/bare",
+    "mirrored f32/bare",
+    "compact f32/bare",
     "2 workers/1",
     "pyfftw/bare",
 ]
@@ -80,6 +86,12 @@ def main(sizes=(64, 130, 258, 514), update=False):
         def mirrored():
             return op.apply_masked(values, everywhere)
 
+        # the preconditioner's products (E* = 1, unit spacing: the point kernel 1 / (pi r))
+        padded_m = fourier_preconditioner((n, n), P, 1.0, (1.0 / np.pi, 0.0), padded=True, workers=workers)
+        compact_m = fourier_preconditioner(
+            (n, n), compact_period((n, n)), 1.0, (1.0 / np.pi, 0.0), padded=False, workers=workers
+        )
+
         assert np.allclose(ours(), bare(), rtol=1e-12, atol=1e-12 * np.abs(bare()).max())
         expected = op.convolve(mirrored_p)
         assert np.allclose(mirrored(), expected, rtol=0, atol=1e-13 * np.abs(expected).max())
@@ -87,6 +99,8 @@ def main(sizes=(64, 130, 258, 514), update=False):
         to = _timing.median_time(ours)
         t32 = _timing.median_time(ours32)
         tm = _timing.median_time(mirrored)
+        tpm = _timing.median_time(lambda: padded_m.apply(values, everywhere))
+        tcm = _timing.median_time(lambda: compact_m.apply(values, everywhere))
         one, two = HalfSpaceOperator(op.kernel, (n, n), 1), HalfSpaceOperator(op.kernel, (n, n), 2)
         w2 = alternated(lambda: two.convolve(p), lambda: one.convolve(p))
         row = [
@@ -97,6 +111,8 @@ def main(sizes=(64, 130, 258, 514), update=False):
             f"{to / tb:.2f}",
             f"{t32 / tb:.2f}",
             f"{tm / tb:.2f}",
+            f"{tpm / tb:.2f}",
+            f"{tcm / tb:.2f}",
             f"{w2:.2f}",
         ]
         try:

@@ -72,14 +72,18 @@ class HalfSpaceOperator:
     ----------
     kernel : numpy.ndarray
         The influence coefficients, laid out as :func:`halfspace.love_influence` returns them,
-        (Mx, My) with Mx >= 2 nx - 1 and My >= 2 ny - 1; for ``periodic``, as
-        :func:`halfspace.love_influence_periodic` returns them, with the grid's shape.
+        (Mx, My) with Mx >= 2 nx - 1 and My >= 2 ny - 1; for ``periodic``, the coefficients
+        over the period, Mx >= nx and My >= ny (for a periodic array of faces, as
+        :func:`halfspace.love_influence_periodic` returns them, with the grid's shape).
     shape : tuple of int
         (nx, ny), the grid of the pressure and the displacement.
     workers : int, optional
         FFT threads (:func:`default_workers`), >= 1.
     periodic : bool, optional
-        Circular convolution over the grid itself (a periodic array of faces).
+        Circular convolution over the kernel's shape (the period), whose first nx x ny cells
+        hold the grid: the grid itself for a periodic array of faces, or a longer period over
+        which the grid's values are zero-extended (a circulant approximation such as a
+        preconditioner, which may wrap).
 
     Raises
     ------
@@ -90,15 +94,15 @@ class HalfSpaceOperator:
     kernel: np.ndarray
     shape: tuple[int, int]
     workers: int = 1
-    periodic: bool = False  # circular convolution over the grid itself (kernel shape = grid shape)
+    periodic: bool = False  # circular convolution over the kernel's shape, >= the grid's
     _symbol: np.ndarray = field(init=False, repr=False)  # set once in __post_init__
 
     def __post_init__(self):
         nx, ny = self.shape
         Mx, My = self.kernel.shape
         if self.periodic:
-            if (Mx, My) != (nx, ny):
-                raise ValueError(f"a periodic kernel must have the grid's shape {self.shape} (got {self.kernel.shape})")
+            if Mx < nx or My < ny:
+                raise ValueError(f"a periodic kernel's shape {self.kernel.shape} must hold the grid {self.shape}")
         elif Mx < 2 * nx - 1 or My < 2 * ny - 1:
             raise ValueError(f"kernel shape {self.kernel.shape} too small for grid {self.shape}")
         # the symbol of an even real kernel is real: multiply by the real part only
@@ -189,13 +193,7 @@ class HalfSpaceOperator:
     def _mirror_ready(self, grid: np.ndarray) -> bool:
         """Whether a product of ``grid`` (nx, ny) may take :meth:`_mirrored`: the transforms
         are at hand, the padded rows are even in number and the grid mirrors exactly."""
-        return (
-            _pocketfft is not None
-            and not self.periodic
-            and self.kernel.shape[0] % 2 == 0
-            and self.shape[0] >= 2
-            and mirrors(grid)
-        )
+        return _pocketfft is not None and self.kernel.shape[0] % 2 == 0 and self.shape[0] >= 2 and mirrors(grid)
 
     @property
     def padded_shape(self) -> tuple[int, int]:
@@ -226,8 +224,6 @@ class HalfSpaceOperator:
         nx, ny = self.shape
         Mx, My = self.kernel.shape
         s = self._symbol if symbol is None else symbol
-        if self.periodic:
-            return sfft.irfft2(sfft.rfft2(p, workers=self.workers) * s, s=(nx, ny), workers=self.workers)
         if _pocketfft is not None and p.dtype in (np.float32, np.float64):
             rows, _ = self._buffers(p.dtype)
             rows[:, :ny] = p
@@ -342,7 +338,7 @@ class HalfSpaceOperator:
     def _masked(self, values: np.ndarray, mask: np.ndarray, symbol: np.ndarray, dtype: np.dtype) -> np.ndarray:
         """The convolution of ``values`` on ``mask`` (zero elsewhere) with ``symbol``, computed
         in ``dtype``'s precision, on the whole grid."""
-        if self.periodic or _pocketfft is None or dtype not in (np.float32, np.float64):
+        if _pocketfft is None or dtype not in (np.float32, np.float64):
             p = np.zeros(self.shape, dtype=dtype)
             p[mask] = values
             return self.convolve(p, symbol)

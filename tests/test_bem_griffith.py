@@ -88,7 +88,7 @@ def test_elongated_faces_get_a_positive_preconditioner_and_the_same_answer():
     preconditioning does not change the answer."""
     sc = dataclasses.replace(circle_scene(), indenter=cs.Indenter(cs.Rectangle(4.0, 1.0)))
     prob = bg.solver.build_problem(sc, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=12)))
-    assert prob.operator.symbol.min() < 0 < prob.inverse_symbol.min()
+    assert prob.operator.symbol.min() < 0 < prob.preconditioner.inverse_symbol.min()
     a, b = run(sc, 12), run(sc, 12, preconditioner="none")
     assert a.pulloff_force == pytest.approx(b.pulloff_force, rel=1e-8)
     assert np.array_equal(a.curve.contact_area, b.curve.contact_area)
@@ -148,7 +148,9 @@ def test_shrinking_window_changes_nothing():
     star = dataclasses.replace(circle_scene(), indenter=cs.Indenter(cs.Star(5, 1.0, 0.45)))
     a, b = run(star, 24), run(star, 24, shrink_window=False)
     assert a.info["windowed_solves"] > a.info["solves"] // 2 and b.info["windowed_solves"] == 0
-    assert a.info["events"] == b.info["events"] and a.info["solves"] == b.info["solves"]
+    # the solves may differ: each window has its own (compact) preconditioner, so CG's iterates
+    # differ and a pass may leave a cell below the threshold undecided for a later one
+    assert a.info["events"] == b.info["events"]
     assert np.array_equal(a.curve.contact_area, b.curve.contact_area)
     assert np.array_equal(a.last_stable.contact, b.last_stable.contact)
     assert a.pulloff_force == pytest.approx(b.pulloff_force, rel=1e-9)

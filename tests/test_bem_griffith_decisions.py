@@ -20,9 +20,10 @@ import bem_griffith as bg
 import contact_scene as cs
 from bem_griffith.driver import early_decision
 from bem_griffith.linear import conjugate_gradient
+from bem_griffith.preconditioner import compact_period, fourier_preconditioner
 from bem_griffith.press import press_to_approach
 from bem_griffith.stress_intensity import PaperRule
-from crossval.suite import SUITE
+from crossval.suite import SUITE, scene as builtin_scene
 
 #: the kernels the bounds are checked on: homogeneous, graded with k >= 0 and with k < 0
 MATERIALS = pytest.mark.parametrize(
@@ -39,6 +40,37 @@ def scene(shape, material=None):
 
 def settings(N, **kw):
     return bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N), **kw)
+
+
+def dense_preconditioner(problem, padded):
+    """The Fourier preconditioner M on the face's grid as a dense matrix, over the padded grid
+    or the compact period."""
+    nx, ny = problem.face.shape
+    period = problem.operator.padded_shape if padded else compact_period((nx, ny))
+    preconditioner = fourier_preconditioner((nx, ny), period, problem.spacing, problem.point_kernel, padded=padded)
+    m = preconditioner.operator.kernel
+    rows, cols = np.divmod(np.arange(nx * ny), ny)
+    return m[(rows[:, None] - rows[None, :]) % period[0], (cols[:, None] - cols[None, :]) % period[1]]
+
+
+@pytest.mark.parametrize("name", ["star", "triangle"])
+def test_the_compact_preconditioner_pulls_as_the_padded_one(name, monkeypatch):
+    """Problems with the walk property take the preconditioner over a compact period (no
+    padding: it wraps), the others the padded one; a pull with either passes through the same
+    contact sets to the same F_A, within CG's tolerance."""
+    sc = builtin_scene(name)
+    st = settings(24)
+    problem = bg.solver.build_problem(sc, st)
+    assert problem.walk_bounds and not problem.preconditioner.padded
+    assert problem.preconditioner.period == compact_period(problem.face.shape)
+    graded = bg.solver.build_problem(scene(cs.Circle(1.0), cs.PowerLawGraded(1.0, 0.5, -0.5)), st)
+    assert graded.preconditioner.padded and graded.preconditioner.period == graded.operator.padded_shape
+    compact = bg.solve(sc, st)
+    monkeypatch.setattr(bg.problem, "COMPACT_PRECONDITIONER", False)
+    padded = bg.solve(sc, st)
+    assert np.array_equal(compact.curve.contact_area, padded.curve.contact_area)
+    assert compact.pulloff_force == pytest.approx(padded.pulloff_force, rel=1e-8)
+    assert compact.info["matvecs"] != padded.info["matvecs"]  # a different preconditioner ran
 
 
 def dense_operator(problem):
@@ -88,11 +120,9 @@ def test_energy_bounds_hold_for_every_contact_submatrix(material, shape):
     lattice itself (``tests/test_bem_griffith_ties.py``)."""
     problem = bg.solver.build_problem(scene(shape, material), settings(9 if isinstance(shape, cs.Circle) else 12))
     C = dense_operator(problem)
-    Mx, My = problem.operator.padded_shape
-    nx, ny = problem.face.shape
-    rows, cols = np.divmod(np.arange(nx * ny), ny)
-    m = scipy.fft.irfft2(problem.inverse_symbol.astype(float), s=(Mx, My))
-    M = m[(rows[:, None] - rows[None, :]) % Mx, (cols[:, None] - cols[None, :]) % My]
+    # the padded preconditioner, which problems without the walk property (here k = -0.5) take
+    assert problem.preconditioner.padded == (not problem.walk_bounds)
+    M = dense_preconditioner(problem, padded=True)
     face = problem.face.ravel()
     rng = np.random.default_rng(5)
     largest_diagonal, largest_energy_ratio = 0.0, 0.0

@@ -393,3 +393,39 @@ def test_an_odd_padded_row_count_keeps_the_full_transforms(monkeypatch):
     everywhere = np.ones((nx, ny), bool)
     monkeypatch.setattr(ho.HalfSpaceOperator, "_mirrored", lambda self, *a: pytest.fail("half transforms"))
     assert np.array_equal(op.apply_masked(p[everywhere], everywhere), op.convolve(p))
+
+
+@pytest.mark.parametrize("shape,period", [((12, 9), (14, 10)), ((13, 9), (16, 9)), ((12, 9), (12, 9))], ids=str)
+def test_a_periodic_operator_convolves_circularly_over_a_period_longer_than_its_grid(shape, period, monkeypatch):
+    """A circulant over a period at least the grid's (the grid's values zero-extended, as a
+    compact preconditioner applies one): the masked products, double and single precision, are
+    the dense circular convolution's, a mirrored pressure taking the half transforms (also
+    where the period is the grid, a periodic array of faces).  A kernel too small for the grid
+    is refused."""
+    import halfspace.operator as ho
+
+    nx, ny = shape
+    Px, Py = period
+    rng = np.random.default_rng(11)
+    K = rng.standard_normal(period)
+    K = K + K[(-np.arange(Px)) % Px]  # even along each axis, as the influence coefficients are
+    K = K + K[:, (-np.arange(Py)) % Py]
+    op = HalfSpaceOperator(K, shape, periodic=True)
+    rows, cols = np.divmod(np.arange(nx * ny), ny)
+    C = K[(rows[:, None] - rows[None, :]) % Px, (cols[:, None] - cols[None, :]) % Py]
+    mask = rng.random(shape) < 0.6
+    mask = mask | mask[::-1]
+    p = rng.standard_normal(shape)
+    p = np.where(mask, p + p[::-1], 0.0)
+    calls = []
+    mirrored = ho.HalfSpaceOperator._mirrored
+    monkeypatch.setattr(ho.HalfSpaceOperator, "_mirrored", lambda self, *a: calls.append(1) or mirrored(self, *a))
+    dense = (C[:, mask.ravel()] @ p[mask]).reshape(shape)
+    scale = np.abs(dense).max()
+    assert np.allclose(op.apply_masked(p[mask], mask), dense, rtol=0, atol=1e-13 * scale)
+    u32 = op.apply_symbol(p[mask].astype(np.float32), mask, op.symbol.astype(np.float32))
+    assert np.allclose(u32, dense[mask], rtol=0, atol=1e-5 * scale)
+    assert len(calls) == 2
+    assert np.allclose(op.convolve(p), dense, rtol=0, atol=1e-13 * scale)
+    with pytest.raises(ValueError, match="must hold the grid"):
+        HalfSpaceOperator(K[: nx - 1], shape, periodic=True)
