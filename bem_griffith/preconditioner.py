@@ -88,9 +88,10 @@ class FourierPreconditioner:
     padded
         Whether the period holds the grid zero-padded to at least 2 n - 1 in both directions,
         so that M restricted to the grid is a section of the infinite lattice's inverse, as
-        sampled: then r.M r bounds the energy norm of a CG error (``SAMPLING_MARGIN``).  A
-        compact period (:func:`compact_period`) wraps, and gives no such bound: a residual
-        that is smooth over the whole grid meets M's smallest modes."""
+        sampled: then r.M r bounds the energy norm of a CG error (``SAMPLING_MARGIN``).  Over a
+        compact period (:func:`compact_period`) M wraps and is no such section, so that argument
+        does not apply (dense checks on a few faces found r.M r within SAMPLING_MARGIN all the
+        same, but nothing guarantees it): the early decisions then take no energy bound."""
 
     operator: HalfSpaceOperator
     inverse_symbol: np.ndarray

@@ -44,8 +44,9 @@ SAMPLING_MARGIN = 2.0
 #: (``tests/test_bem_griffith_ties.py``), not between them; it fails at k = -0.1
 WALK_EXPONENTS = (0.0, 0.95)
 #: whether problems with the walk property take the preconditioner over a compact period (each
-#: product about a third of the padded one's cost, for a few per cent more CG iterations);
-#: their early decisions bound errors by the residual's largest entry, which needs no r.M r
+#: product well under half the padded one's cost, for slightly more CG iterations:
+#: docs/performance.md); their early decisions bound errors by the residual's largest entry,
+#: which needs no r.M r
 COMPACT_PRECONDITIONER = True
 
 
@@ -225,8 +226,8 @@ def build_problem(scene: Scene, settings: GriffithSettings) -> Problem:
     walk_bounds = not periodic and WALK_EXPONENTS[0] <= point_kernel[1] <= WALK_EXPONENTS[1]
     preconditioner = None
     if inverse is not None:
-        # without padding a product costs about a quarter of the padded one's transforms, for a
-        # few per cent more CG iterations; its r.M r bounds nothing, which the walk bounds spare
+        # without padding a product costs well under half the padded one's, for slightly more CG
+        # iterations; its r.M r is no bound, and the walk bounds need none
         preconditioner = (
             fourier_preconditioner(
                 (nx, ny), compact_period((nx, ny)), h, point_kernel, padded=False, workers=settings.workers
