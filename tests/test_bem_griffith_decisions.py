@@ -73,6 +73,20 @@ def test_the_compact_preconditioner_pulls_as_the_padded_one(name, monkeypatch):
     assert compact.info["matvecs"] != padded.info["matvecs"]  # a different preconditioner ran
 
 
+def test_premature_decisions_change_the_contact_sets_the_comparison_above_reads(monkeypatch):
+    """The mutant behind the test above: with the padded preconditioner and its energy bound
+    shrunk 2e4-fold (SAMPLING_MARGIN 1e-4), passes are decided before their leavers are
+    certain, and the star's pull no longer passes through the contact sets the compact
+    preconditioner's does (F_A itself moves only at the CG tolerance here)."""
+    sc = builtin_scene("star")
+    st = settings(24)
+    compact = bg.solve(sc, st)
+    monkeypatch.setattr(bg.problem, "COMPACT_PRECONDITIONER", False)
+    monkeypatch.setattr(bg.contact_set, "SAMPLING_MARGIN", 1e-4)
+    premature = bg.solve(sc, st)
+    assert not np.array_equal(compact.curve.contact_area, premature.curve.contact_area)
+
+
 def dense_operator(problem):
     """C on the face's grid as a dense matrix (row-major cells), from the padded kernel."""
     nx, ny = problem.face.shape
