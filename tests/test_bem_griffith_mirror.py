@@ -20,7 +20,7 @@ def scene(shape):
     [(cs.Star(5, 1.0, 0.45), 40), (cs.Triangle.equilateral(2.0), 32), (cs.Rectangle(4.0, 1.0), 16)],
     ids=["star", "triangle", "rectangle"],
 )
-def test_a_mirrored_pull_is_the_pull_with_full_transforms(shape, N, monkeypatch):
+def test_a_mirrored_pull_is_the_pull_with_full_transforms(shape, N, monkeypatch, count_calls):
     """Star, triangle and 4:1 rectangle (each mirrors about the grid's middle row): the same
     events and contact areas along the curve as with the full transforms only, the forces and
     the detachment approach to the CG tolerance, the last stable set mirrored, and most
@@ -29,20 +29,9 @@ def test_a_mirrored_pull_is_the_pull_with_full_transforms(shape, N, monkeypatch)
     st = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N))
     problem = bg.solver.build_problem(sc, st)
     assert np.array_equal(problem.face, problem.face[::-1])
-    calls = {"mirrored": 0, "full": 0}
-    mirrored, pruned = ho.HalfSpaceOperator._mirrored, ho.HalfSpaceOperator._pruned
-
-    def count(key, fn):
-        def wrapper(self, *args):
-            calls[key] += 1
-            return fn(self, *args)
-
-        return wrapper
-
-    monkeypatch.setattr(ho.HalfSpaceOperator, "_mirrored", count("mirrored", mirrored))
-    monkeypatch.setattr(ho.HalfSpaceOperator, "_pruned", count("full", pruned))
+    calls = count_calls(ho.HalfSpaceOperator, "_mirrored", "_pruned")
     a = bg.solve(sc, st)
-    assert calls["mirrored"] > 3 * calls["full"]
+    assert calls["_mirrored"] > 3 * calls["_pruned"]
     monkeypatch.setattr(ho.HalfSpaceOperator, "_mirror_ready", lambda self, grid: False)
     b = bg.solve(sc, st)
     assert a.converged and b.converged

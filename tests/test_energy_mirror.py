@@ -52,7 +52,7 @@ def products(prob, U):
     [(cs.Triangle.equilateral(2.0), 0.05), (cs.Circle(1.0), 0.07), (cs.Rectangle(4.0, 1.0), 0.1)],
     ids=["triangle 90^2", "circle 60^2", "rectangle 96^2"],
 )
-def test_mirrored_products_take_half_transforms_and_equal_the_full_ones(shape, spacing, monkeypatch):
+def test_mirrored_products_take_half_transforms_and_equal_the_full_ones(shape, spacing, count_calls):
     """C^-1 U in double and single precision and C U in single precision of a U that mirrors:
     half transforms, equal to the full ones to their precision's round-off (about eps per level
     of log2(n) levels, as for the full transforms against the exact quotient), mirrored exactly.
@@ -61,26 +61,24 @@ def test_mirrored_products_take_half_transforms_and_equal_the_full_ones(shape, s
     prob = be.build_problem(scene(shape), spacing, None)
     assert prob._mirror is not None
     U = mirrored_random(prob)
-    calls = []
-    mirrored = bp.EnergyProblem._mirrored
-    monkeypatch.setattr(bp.EnergyProblem, "_mirrored", lambda self, *a: calls.append(1) or mirrored(self, *a))
+    calls = count_calls(bp.EnergyProblem, "_mirrored")
     depth = math.log2(prob.padded[0] * prob.padded[1])
     bounds = [2 * depth * np.finfo(t).eps for t in (np.float64, np.float32, np.float32)]
     rows = mirror_rows(prob)
     for got, expected, bound in zip(products(prob, U), full_products(prob, U), bounds, strict=True):
         assert np.max(np.abs(got - expected)) <= bound * np.max(np.abs(expected))
         assert np.array_equal(got, got[rows])
-    assert len(calls) == 3
+    assert calls["_mirrored"] == 3
     # single precision in and out (the projected CG's direction arrays)
     out = np.full(prob.padded, np.nan, np.float32)
     assert prob.pressure_single(U.astype(np.float32), out=out) is out
-    assert np.array_equal(out, out[rows]) and len(calls) == 4
+    assert np.array_equal(out, out[rows]) and calls["_mirrored"] == 4
     off = U.copy()
     off[0, 0] = np.nextafter(np.float32(off[0, 0]), np.float32(np.inf))  # off in either precision
     assert not prob._mirrors(off)
     for got, expected in zip(products(prob, off), full_products(prob, off), strict=True):
         assert np.array_equal(got, expected)
-    assert len(calls) == 4
+    assert calls["_mirrored"] == 4
 
 
 def test_a_swapped_cosine_transform_fails_the_comparison(monkeypatch):
@@ -119,7 +117,7 @@ def test_a_problem_that_does_not_mirror_keeps_the_full_transforms(shape, profile
     assert np.array_equal(prob.pressure(U), U)
 
 
-def test_a_mirrored_pull_stays_mirrored_and_is_the_pull_with_full_transforms(monkeypatch):
+def test_a_mirrored_pull_stays_mirrored_and_is_the_pull_with_full_transforms(monkeypatch, count_calls):
     """The triangle's pull at a fixed range: every product on the half transforms, the last
     state mirrored exactly, and the pull-off force of the full transforms within the peak
     search's own tolerance (the paths differ at round-off, and the peak is located to that
@@ -127,22 +125,11 @@ def test_a_mirrored_pull_stays_mirrored_and_is_the_pull_with_full_transforms(mon
     rho = 0.05
     sc = cs.Scene(cs.Indenter(cs.Triangle.equilateral(2.0)), cs.Homogeneous(1.0, 0.0), cs.Adhesion(0.02, rho))
     st = be.EnergySettings(grid=cs.Grid(spacing=0.05))
-    calls = {"mirrored": 0, "full": 0}
-    mirrored, spectrum = bp.EnergyProblem._mirrored, bp.EnergyProblem._spectrum
-
-    def count(key, fn):
-        def wrapper(self, *args):
-            calls[key] += 1
-            return fn(self, *args)
-
-        return wrapper
-
-    monkeypatch.setattr(bp.EnergyProblem, "_mirrored", count("mirrored", mirrored))
-    monkeypatch.setattr(bp.EnergyProblem, "_spectrum", count("full", spectrum))
+    calls = count_calls(bp.EnergyProblem, "_mirrored", "_spectrum")
     a = be.solve(sc, st)
-    assert calls["mirrored"] > 100 and calls["full"] == 0
+    assert calls["_mirrored"] > 100 and calls["_spectrum"] == 0
     monkeypatch.setattr(bp.EnergyProblem, "_mirror_layout", lambda self: None)
     b = be.solve(sc, st)
-    assert calls["full"] > 100
+    assert calls["_spectrum"] > 100
     assert a.converged and b.converged
     assert a.pulloff_force == pytest.approx(b.pulloff_force, rel=st.peak_tolerance)

@@ -343,7 +343,7 @@ def test_private_in_place_transforms_are_used_only_when_they_equal_scipy_fft():
 
 
 @pytest.mark.parametrize("shape", [(12, 9), (13, 9), (40, 31), (41, 30)], ids=str)
-def test_mirror_symmetric_products_take_half_transforms_and_equal_the_full_ones(shape, monkeypatch):
+def test_mirror_symmetric_products_take_half_transforms_and_equal_the_full_ones(shape, count_calls):
     """A pressure that mirrors about the grid's middle row (even and odd row counts) is
     convolved by cosine transforms over half the rows: the product is the dense matrix's, and
     the full transforms', to round-off (double) and single precision (float32), and mirrors
@@ -363,20 +363,18 @@ def test_mirror_symmetric_products_take_half_transforms_and_equal_the_full_ones(
     mask = mask | mask[::-1]
     p = rng.standard_normal((nx, ny))
     p = np.where(mask, p + p[::-1], 0.0)
-    calls = []
-    mirrored = ho.HalfSpaceOperator._mirrored
-    monkeypatch.setattr(ho.HalfSpaceOperator, "_mirrored", lambda self, *a: calls.append(1) or mirrored(self, *a))
+    calls = count_calls(ho.HalfSpaceOperator, "_mirrored")
     u = op.apply_masked(p[mask], mask)
     dense = (C[:, mask.ravel()] @ p[mask]).reshape(nx, ny)
-    assert calls and np.array_equal(u, u[::-1])
+    assert calls["_mirrored"] and np.array_equal(u, u[::-1])
     assert np.allclose(u, dense, rtol=0, atol=1e-14 * np.abs(dense).max())
     u32 = op.apply_symbol(p[mask].astype(np.float32), mask, op.symbol.astype(np.float32))
     assert np.allclose(u32, dense[mask], rtol=0, atol=1e-6 * np.abs(dense).max())
-    assert len(calls) == 2
+    assert calls["_mirrored"] == 2
     q = p.copy()
     q[0, np.flatnonzero(mask[0])[0]] = np.nextafter(q[0, np.flatnonzero(mask[0])[0]], np.inf)
     u_off = op.apply_masked(q[mask], mask)
-    assert len(calls) == 2 and np.allclose(u_off, dense, rtol=0, atol=1e-14 * np.abs(dense).max())
+    assert calls["_mirrored"] == 2 and np.allclose(u_off, dense, rtol=0, atol=1e-14 * np.abs(dense).max())
 
 
 def test_an_odd_padded_row_count_keeps_the_full_transforms(monkeypatch):
@@ -396,7 +394,7 @@ def test_an_odd_padded_row_count_keeps_the_full_transforms(monkeypatch):
 
 
 @pytest.mark.parametrize("shape,period", [((12, 9), (14, 10)), ((13, 9), (16, 9)), ((12, 9), (12, 9))], ids=str)
-def test_a_periodic_operator_convolves_circularly_over_a_period_longer_than_its_grid(shape, period, monkeypatch):
+def test_a_periodic_operator_convolves_circularly_over_a_period_longer_than_its_grid(shape, period, count_calls):
     """A circulant over a period at least the grid's (the grid's values zero-extended, as a
     compact preconditioner applies one): the masked products, double and single precision, are
     the dense circular convolution's, a mirrored pressure taking the half transforms (also
@@ -417,15 +415,13 @@ def test_a_periodic_operator_convolves_circularly_over_a_period_longer_than_its_
     mask = mask | mask[::-1]
     p = rng.standard_normal(shape)
     p = np.where(mask, p + p[::-1], 0.0)
-    calls = []
-    mirrored = ho.HalfSpaceOperator._mirrored
-    monkeypatch.setattr(ho.HalfSpaceOperator, "_mirrored", lambda self, *a: calls.append(1) or mirrored(self, *a))
+    calls = count_calls(ho.HalfSpaceOperator, "_mirrored")
     dense = (C[:, mask.ravel()] @ p[mask]).reshape(shape)
     scale = np.abs(dense).max()
     assert np.allclose(op.apply_masked(p[mask], mask), dense, rtol=0, atol=1e-13 * scale)
     u32 = op.apply_symbol(p[mask].astype(np.float32), mask, op.symbol.astype(np.float32))
     assert np.allclose(u32, dense[mask], rtol=0, atol=1e-5 * scale)
-    assert len(calls) == 2
+    assert calls["_mirrored"] == 2
     assert np.allclose(op.convolve(p), dense, rtol=0, atol=1e-13 * scale)
     with pytest.raises(ValueError, match="must hold the grid"):
         HalfSpaceOperator(K[: nx - 1], shape, periodic=True)
