@@ -342,6 +342,22 @@ def test_private_in_place_transforms_are_used_only_when_they_equal_scipy_fft():
     assert not same_as_scipy_fft(mutant(dct=swapped_dct))
 
 
+@pytest.mark.parametrize("rows", [1, 2, 7, 8])
+def test_mirrors_sees_any_asymmetric_element(rows):
+    """``mirrors`` compares half the rows with their images: one changed element anywhere, the
+    middle row of an odd grid included, is seen, and the exact mirror image passes."""
+    rng = np.random.default_rng(rows)
+    grid = rng.random((rows, 5))
+    grid = grid + grid[::-1]
+    assert halfspace.operator.mirrors(grid)
+    for i in range(rows):
+        for j in range(5):
+            broken = grid.copy()
+            broken[i, j] += 1e-12
+            # a middle row mirrors onto itself: changing it keeps the mirror symmetry
+            assert halfspace.operator.mirrors(broken) == (2 * i == rows - 1)
+
+
 @pytest.mark.parametrize("shape", [(12, 9), (13, 9), (40, 31), (41, 30)], ids=str)
 def test_mirror_symmetric_products_take_half_transforms_and_equal_the_full_ones(shape, count_calls):
     """A pressure that mirrors about the grid's middle row (even and odd row counts) is
