@@ -3,7 +3,8 @@
 All take the padded displacement U0 as a warm start, the approach d and whether adhesion is
 on, and return a :class:`Minimum`.  Convergence is judged the same way for all: the projected
 gradient, in units of the pressure that displaces one element by the length scale L (the
-range rho with adhesion, else |d|), must fall below ``gtol``.
+range rho with adhesion, else |d|), must fall below ``gtol``; with adhesion that unit is at
+most ``ADHESIVE_UNIT`` times the potential's peak stress w / rho (:func:`unit_ratio`).
 """
 
 from __future__ import annotations
@@ -79,12 +80,37 @@ def _length_scale(prob: EnergyProblem, d: float, adhesive: bool) -> float:
     return max(abs(d), hmax, 1e-12 * prob.spacing)
 
 
+#: with adhesion, the pressure unit of the convergence measure is at most this multiple of the
+#: potential's peak stress w / rho.  The element's own unit, rho / C_00, grows with the
+#: elements per process zone l_c: about 0.8 l_c / h times w / rho on a homogeneous body, so
+#: 1.6 w / rho at the exponential potential's default two per l_c, 12.9 at Maugis-Dugdale's
+#: sixteen, less on graded bodies.  The cap leaves every default grid alone and acts where the
+#: zone is resolved far more finely than the default: long ranges, stiff bodies and weak
+#: adhesion, where l_c is many times the face and the element unit so large against the
+#: adhesive stress that a minimum accepted at ``gtol`` could leave the adhesive tractions
+#: unresolved (the pull-off force then came out at a fraction of its value, or zero)
+ADHESIVE_UNIT = 16.0
+
+
+def unit_ratio(prob: EnergyProblem, L: float, adhesive: bool) -> float:
+    """The convergence measure's pressure unit over the element's own, L / C_00: 1, or less
+    where ``ADHESIVE_UNIT`` w / rho is the smaller (the measure is then divided by it, and a
+    minimiser's internal tolerance on the element-unit gradient multiplied by it)."""
+    pot = prob.potential
+    if not adhesive or pot is None or pot.work <= 0:
+        return 1.0
+    return min(1.0, ADHESIVE_UNIT * (pot.work / pot.range) * prob.self_compliance / L)
+
+
 def _lower_bound(prob: EnergyProblem, d: float) -> np.ndarray:
     return d - prob.height
 
 
-def projected_gradient(prob: EnergyProblem, U: np.ndarray, G: np.ndarray, d: float, L: float) -> float:
-    """max |projected gradient| / (cell * L / C_00): zero exactly at a KKT point."""
+def projected_gradient(
+    prob: EnergyProblem, U: np.ndarray, G: np.ndarray, d: float, L: float, adhesive: bool = True
+) -> float:
+    """max |projected gradient| / (cell * L / C_00), divided by :func:`unit_ratio` where the
+    adhesive stress sets the unit: zero exactly at a KKT point."""
     pg = G.copy()
     lb = _lower_bound(prob, d)
     # L-BFGS-B and the projections put cells exactly on the wall; a state rebuilt through
@@ -93,7 +119,9 @@ def projected_gradient(prob: EnergyProblem, U: np.ndarray, G: np.ndarray, d: flo
     gf = pg[prob.face]
     gf[at_wall] = np.minimum(gf[at_wall], 0.0)
     pg[prob.face] = gf
-    return float(np.max(np.abs(pg))) * prob.self_compliance / (prob.cell * L)
+    measure = float(np.max(np.abs(pg))) * prob.self_compliance / (prob.cell * L)
+    ratio = unit_ratio(prob, L, adhesive)
+    return measure if ratio == 1.0 else measure / ratio
 
 
 def minimise(
@@ -190,6 +218,7 @@ def minimise(
 
 def _lbfgsb(prob, U0, d, adhesive, gtol, max_iterations, memory) -> Minimum:
     L = _length_scale(prob, d, adhesive)
+    ratio = unit_ratio(prob, L, adhesive)
     # energy unit: one element displaced by L; gradients are then O(1) at the scale of interest
     e = prob.cell * L**2 / prob.self_compliance
     M = prob.padded
@@ -211,12 +240,17 @@ def _lbfgsb(prob, U0, d, adhesive, gtol, max_iterations, memory) -> Minimum:
         method="L-BFGS-B",
         bounds=bounds,
         options=dict(
-            maxcor=memory, ftol=0.0, gtol=0.1 * gtol, maxiter=max_iterations, maxfun=2 * max_iterations, maxls=40
+            maxcor=memory,
+            ftol=0.0,
+            gtol=0.1 * gtol * ratio,
+            maxiter=max_iterations,
+            maxfun=2 * max_iterations,
+            maxls=40,
         ),
     )
     U = res.x.reshape(M) * L
     E, G, P = prob.energy(U, d, adhesive)
-    pg = projected_gradient(prob, U, G, d, L)
+    pg = projected_gradient(prob, U, G, d, L, adhesive)
     # L-BFGS-B aims ten times lower on the same quantity; it may stop earlier on stagnation
     # (round-off in the energy), which is fine when the gradient is small enough
     ok = pg <= gtol
@@ -373,6 +407,7 @@ def _projected_cg(
     that says which ("stagnated at round-off in the energy" or "stagnated: ..."), converged
     only if the projected gradient is below ``gtol``."""
     L = _length_scale(prob, d, adhesive)
+    ratio = unit_ratio(prob, L, adhesive)
     # the face lies in the raster's corner of the padded grid: its cells are read and written
     # there (``face_block``), a quarter of the grid
     corner = (slice(0, prob.n[0]), slice(0, prob.n[1]))
@@ -431,7 +466,8 @@ def _projected_cg(
         Gf = work.gradients[0] if work.gradients[0] is not Gf_previous else work.gradients[1]
         prob.gradient(P, np.where(fixed_face, 0.0, G_face), out=Gf, scale=gradient_scale)
         largest = _largest_magnitude(Gf) / gradient_scale
-        return fixed, Gf, largest * prob.self_compliance / (prob.cell * L)
+        measure = largest * prob.self_compliance / (prob.cell * L)
+        return fixed, Gf, measure if ratio == 1.0 else measure / ratio
 
     def slope_from(load, stress, direction_face):
         # the energy's slope along a direction (zero on the fixed cells), from the elastic
@@ -724,6 +760,8 @@ def _cvxpy(prob, U0, d, adhesive, gtol, max_iterations) -> Minimum:
         face_qp = _FACE_QPS[prob] = _FaceQP(prob)
     K = face_qp.K
     L = _length_scale(prob, d, adhesive)
+    # the loop's measure is in the element's unit; the shared one may be the adhesive stress's
+    inner_tolerance = gtol * unit_ratio(prob, L, adhesive)
     pot = prob.potential if adhesive else None
     a = prob.self_compliance / L**2  # one cell's adhesive energy in the energy unit
     wall = _lower_bound(prob, d) / L
@@ -778,7 +816,7 @@ def _cvxpy(prob, U0, d, adhesive, gtol, max_iterations) -> Minimum:
     gx = gradient(x)
     pg = projected(x, gx)
     it, evals, message = 0, 1, ""
-    while pg > gtol:
+    while pg > inner_tolerance:
         if it >= max_iterations:
             message = "iteration limit"
             break
@@ -818,6 +856,6 @@ def _cvxpy(prob, U0, d, adhesive, gtol, max_iterations) -> Minimum:
     P[prob.face] = np.linalg.solve(face_qp.Cff, x * L)
     U = prob.displacement(P)
     E, G, P = prob.energy(U, d, pot is not None, P)
-    pgf = projected_gradient(prob, U, G, d, L)
+    pgf = projected_gradient(prob, U, G, d, L, adhesive)
     ok = pgf <= gtol
     return Minimum(U, P, E, it, evals, bool(ok), pgf, "" if ok else (message or "not converged"))

@@ -42,10 +42,14 @@ def default_potential(scene: Scene) -> Potential | None:
     return Potential(ad.work_of_adhesion, ad.range, ad.potential)
 
 
-def unresolved_process_zone(scene: Scene, prob: EnergyProblem, potential: Potential) -> str | None:
+def unresolved_process_zone(
+    scene: Scene, prob: EnergyProblem, potential: Potential, remedy: str | None = None
+) -> str | None:
     """Why the grid is too coarse for the process zone (None when it is fine): below the
     potential's fewest elements per l_c (:func:`~bem_energy.potentials.process_zone_elements`) the zone is trapped by
-    the mesh and the pull-off force overshoots, e.g. 2.4 x Kendall at 0.08 elements per l_c."""
+    the mesh and the pull-off force overshoots, e.g. 2.4 x Kendall at 0.08 elements per l_c.
+    ``remedy`` ends the note; by default that of a finite-range run, whose ``--resolution`` is
+    elements per radius (a zero-range sequence gives its own, in elements per l_c)."""
     need = process_zone_elements(potential.kind, prob.exponent)[0]
     lc = prob.process_zone
     per = lc / prob.spacing
@@ -58,11 +62,15 @@ def unresolved_process_zone(scene: Scene, prob: EnergyProblem, potential: Potent
             f"the process zone l_c = {formula} underflows to {lc:g}: no grid resolves it and the result is "
             "trapped by the mesh; use a longer range, or the zero-range limit (no range)"
         )
+    if remedy is None:
+        remedy = (
+            f"use --resolution {math.ceil(need * a / lc * (1 - 1e-9)):d} or more (elements per radius sqrt(A/pi)), "
+            "or a longer range"
+        )
     return (
         f"the grid has {per:.3g} elements per process zone l_c = {lc:.3g} ({formula}, {lc / a:.3g} a); "
         f"the {potential.kind} potential needs at least {need:.3g}, below which the result is trapped by the mesh: "
-        f"use --resolution {math.ceil(need * a / lc * (1 - 1e-9)):d} or more (elements per radius sqrt(A/pi)), "
-        "or a longer range"
+        + remedy
     )
 
 

@@ -82,6 +82,7 @@ def pull_off(
     potential: Potential | None = None,
     callback=None,
     max_memory_gb: float = MAX_MEMORY_GB,
+    resolution_remedy: str | None = None,
 ) -> Result:
     """One finite-range pull-off by energy minimisation under a hard wall.
 
@@ -103,6 +104,9 @@ def pull_off(
         (progress).
     max_memory_gb : float, optional
         Largest working memory allowed for the grid (GB), > 0.
+    resolution_remedy : str or None, optional
+        How to refine the grid, ending the note of a grid too coarse for the process zone; by
+        default a finite-range run's (``--resolution`` in elements per radius).
 
     Returns
     -------
@@ -213,7 +217,7 @@ def pull_off(
             msgs.append(missed)
     resolved = True
     if potential is not None:
-        note = unresolved_process_zone(scene, prob, potential)
+        note = unresolved_process_zone(scene, prob, potential, resolution_remedy)
         if note:
             msgs.append(note)
             resolved = False

@@ -22,6 +22,7 @@ from contact_scene import Circle, Grid, Result, Scene, SolverStats, rasterise, t
 
 from .error_model import error_bars
 from .potentials import (
+    PROCESS_ZONE_ELEMENTS,
     Potential,
     graded_zone_elements,
     process_zone_exponent,
@@ -255,7 +256,13 @@ def sequence_run(scene: Scene, ratio: float, settings: ZeroRangeSettings, *, cal
     )
     potential = Potential(scene.adhesion.work_of_adhesion, rho, settings.potential)
     es = replace(settings.energy, grid=Grid(spacing=spacing))
-    return rho, pull_off(scene, es, spacing=spacing, potential=potential, callback=callback)
+    # the sequence's grid is set in elements per l_c (times the graded factor, as is the need)
+    fewest = PROCESS_ZONE_ELEMENTS[settings.potential][0]
+    remedy = (
+        f"use --resolution {math.ceil(fewest * (1 - 1e-9)):d} or more (elements per process zone, "
+        "ZeroRangeSettings.elements_per_process_zone)"
+    )
+    return rho, pull_off(scene, es, spacing=spacing, potential=potential, callback=callback, resolution_remedy=remedy)
 
 
 def zero_range(scene: Scene, settings: ZeroRangeSettings | None = None, *, callback=None) -> Result:

@@ -58,6 +58,8 @@ __all__ = [
     "jkr_pulloff_force",
     "jkr_force",
     "jkr_approach",
+    "UNIFORM_DISC_DISHING",
+    "long_range_flat_circle_force",
 ]
 
 
@@ -1140,3 +1142,65 @@ def jkr_approach(*, E_star: float, work: float, sphere_radius: float, contact_ra
     """
     a = np.asarray(contact_radius, float)
     return a**2 / sphere_radius - np.sqrt(2.0 * math.pi * work * a / E_star)
+
+
+# ---------------------------------------------------------------------------
+# finite range: the long-range (stiff) limit of a flat circle
+# ---------------------------------------------------------------------------
+
+#: (u(0) - mean u) / (sigma a / E*) for a uniform pressure sigma on a circle of radius a:
+#: u(0) = 2 sigma a / E*, its mean over the circle 16 sigma a / (3 pi E*)
+UNIFORM_DISC_DISHING = 2.0 - 16.0 / (3.0 * math.pi)
+
+
+def long_range_flat_circle_force(*, E_star: float, radius: float, work: float, range: float, potential: str) -> float:
+    """Pull-off force of a flat circle whose process zone l_c is long: pi a^2 sigma0 (1 - c a / l_c).
+
+    With a finite-range potential (peak stress sigma0 = w / rho, l_c = E* rho^2 / w), to first
+    order in eps = sigma0 a / (E* rho) = a / l_c; derived for this package (not in the source
+    paper).  When l_c >> a the adhesive traction deforms the body by about sigma0 a / E*, far
+    less than the range, so the traction is nearly its peak sigma0 everywhere on the face and
+    the tension is largest where the gaps are smallest: when the surface last touches the
+    punch.  To first order the surface then takes the displacement of a uniform pressure sigma0
+    on the circle, largest at the centre (2 sigma0 a / E*), which is where it touches, and the
+    gaps are g(r) = u(0) - u(r).  Exponential potential, traction sigma0 exp(-g / rho) ~
+    sigma0 (1 - g / rho): F_A = pi a^2 sigma0 (1 - (u(0) - mean u) / rho), so
+    c = 2 - 16 / (3 pi) (:data:`UNIFORM_DISC_DISHING`); the next order is not derived.
+    Maugis-Dugdale, traction sigma0 while g < rho: every gap is below the range at the last
+    touch while u(0) - u(a) = (2 - 4/pi) sigma0 a / E* < rho, i.e. eps < 1 / (2 - 4/pi), and
+    then F_A = pi a^2 sigma0 exactly (c = 0).
+
+    Parameters
+    ----------
+    E_star : float
+        Effective modulus E* = E / (1 - nu^2) of the homogeneous half-space (Pa), > 0.
+    radius : float
+        Punch radius a (m), > 0.
+    work : float
+        Work of adhesion w per unit area (J/m^2), > 0.
+    range : float
+        Range rho of the potential (m), > 0.
+    potential : str
+        ``"exponential"`` or ``"maugis_dugdale"`` (:class:`bem_energy.Potential`).
+
+    Returns
+    -------
+    float
+        F_A (N), > 0.
+
+    Raises
+    ------
+    ValueError
+        For an unknown potential, or a Maugis-Dugdale process zone too short for the exact
+        result (eps >= 1 / (2 - 4/pi)).
+    """
+    sigma0 = work / range
+    eps = sigma0 * radius / (E_star * range)
+    area = math.pi * radius**2
+    if potential == "exponential":
+        return area * sigma0 * (1.0 - UNIFORM_DISC_DISHING * eps)
+    if potential == "maugis_dugdale":
+        if eps * (2.0 - 4.0 / math.pi) >= 1.0:
+            raise ValueError(f"eps = a / l_c = {eps:g} is not below 1 / (2 - 4/pi): the edge gap reaches the range")
+        return area * sigma0
+    raise ValueError(f"potential: must be 'exponential' or 'maugis_dugdale' (got {potential!r})")

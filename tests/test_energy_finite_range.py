@@ -54,6 +54,95 @@ def test_long_range_keeps_32_per_radius():
     assert g.spacing_for(cs.Circle(1.0)) == pytest.approx(1 / 32, rel=1e-12)
 
 
+# -- the long-range (stiff) limit: l_c >> a --------------------------------------------
+
+#: E* = 1 / (1 - 0.3^2), w = 1, a = 1: eps = a / l_c = w a / (E* rho^2) picks the range
+STIFF_E, STIFF_NU = 1.0, 0.3
+
+
+def stiff(eps=None, *, rho=None, potential="exponential", E=STIFF_E, w=1.0):
+    if rho is None:
+        rho = math.sqrt(w / (E / (1 - STIFF_NU**2) * eps))
+    return cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(E, STIFF_NU), cs.Adhesion(w, rho, potential))
+
+
+def stiff_ratio(res, scene):
+    """F_A over the raster face's area times the peak stress w / rho, and eps = a / l_c."""
+    E_star = scene.material.youngs_modulus / (1 - scene.material.poisson_ratio**2)
+    w, rho = scene.adhesion.work_of_adhesion, scene.adhesion.range
+    return res.pulloff_force / (res.face_area * w / rho), w / (E_star * rho**2)
+
+
+@pytest.mark.parametrize("eps", [0.1, 0.05, 0.025])
+def test_long_range_force_follows_the_stiff_limit_to_first_order(eps):
+    """F_A / (A sigma0) = 1 - c eps + O(eps^2), c = 2 - 16 / (3 pi): the adhesive traction's
+    first-order dishing of the surface (``theory.long_range_flat_circle_force``).  The shortfall
+    over c eps, r, tends to 1: r - 1 = -0.044, -0.013, -0.0023, +0.0004 at eps = 0.2, 0.1, 0.05,
+    0.025 on 16, 32 and 64 per radius alike (to 1e-3), so |r - 1| <= 2 eps^2 here.  The force
+    maximum is a kink (where the surface leaves the punch), located to a tight snap tolerance
+    so that its error stays far below the shortfall.  E instead of E* moves r by 10 %."""
+    sc = stiff(eps)
+    res = be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=32), snap_tolerance=1e-5))
+    assert res.converged, res.messages
+    ratio, eps_scene = stiff_ratio(res, sc)
+    assert eps_scene == pytest.approx(eps)
+    r = (1 - ratio) / (T.UNIFORM_DISC_DISHING * eps)
+    assert abs(r - 1) <= 2 * eps**2, r
+    E_star = STIFF_E / (1 - STIFF_NU**2)
+    closed = T.long_range_flat_circle_force(
+        E_star=E_star, radius=1.0, work=1.0, range=sc.adhesion.range, potential="exponential"
+    )
+    # the closed form on the nominal circle, the solver on its raster: their ratio is the areas'
+    assert res.pulloff_force / closed == pytest.approx(res.face_area / math.pi, abs=2 * eps**3)
+
+
+@pytest.mark.parametrize("eps", [0.1, 0.5])
+def test_maugis_dugdale_long_range_force_is_the_peak_stress_times_the_area(eps):
+    """Every gap stays below the range at the last touch (eps < 1 / (2 - 4/pi)), so each cell
+    pulls with exactly sigma0: F_A = A sigma0 to the minimisers' tolerance."""
+    sc = stiff(eps, potential="maugis_dugdale")
+    res = be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=32)))
+    assert res.converged, res.messages
+    assert stiff_ratio(res, sc)[0] == pytest.approx(1.0, abs=1e-5)
+
+
+STIFF_CASES = {
+    "rho = 100 a": dict(rho=100.0),
+    "rho = 1000 a": dict(rho=1000.0),
+    "E = 1e6": dict(rho=1.0, E=1e6),
+    "w = 1e-4": dict(rho=1.0, w=1e-4),
+    "Maugis-Dugdale, rho = 1000 a": dict(rho=1000.0, potential="maugis_dugdale"),
+}
+
+
+@pytest.mark.parametrize("case", list(STIFF_CASES))
+def test_a_very_long_process_zone_still_resolves_the_adhesive_stress(case):
+    """l_c from 1e4 a to 1e6 a with the default settings: the element's pressure unit (rho /
+    C_00) is then 1e5 ... 1e7 times the adhesive stress w / rho, and a minimum accepted in it
+    took the first trial for converged (F_A 12 % low at rho = 100, zero at 1000).  With the
+    unit capped at ``ADHESIVE_UNIT`` w / rho: F_A / (A sigma0) lies between 1 - c eps less the
+    snap tolerance's share (the kink is located to snap_tolerance times the pull's scale) and
+    1 (no cell pulls harder than sigma0)."""
+    sc = stiff(**STIFF_CASES[case])
+    settings = be.EnergySettings()
+    res = be.solve(sc, settings)
+    assert res.converged, res.messages
+    ratio, eps = stiff_ratio(res, sc)
+    assert eps <= 1e-4
+    # the pull's scale is rho plus the critical approach, which is below rho in every case
+    assert 1 - T.UNIFORM_DISC_DISHING * eps - 2 * settings.snap_tolerance <= ratio <= 1 + 1e-12
+
+
+def test_an_uncapped_pressure_unit_misses_the_adhesive_stress(monkeypatch):
+    """The mutant: the element's unit alone (no cap) accepts the first trial at l_c = 1e6 a."""
+    import bem_energy.minimisers as minimisers
+
+    monkeypatch.setattr(minimisers, "ADHESIVE_UNIT", math.inf)
+    sc = stiff(rho=1000.0)
+    res = be.solve(sc, be.EnergySettings())
+    assert stiff_ratio(res, sc)[0] < 0.5
+
+
 def test_a_range_too_short_to_resolve_is_refused_with_the_shortest_that_fits():
     """The README's former example, rho = 0.05 (l_c = 0.0025 a: 0.08 elements per l_c at 32
     per radius, F_A = 2.44 x Kendall) would need 800 per radius: refused before any run,
@@ -84,6 +173,19 @@ def test_resolution_too_coarse_for_the_process_zone_is_not_converged():
     # pull_off called directly with such a grid says the same
     r = be.pull_off(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=4)))
     assert not r.converged and r.messages == coarse.messages
+
+
+def test_a_zero_range_sequence_too_coarse_advises_its_own_resolution():
+    """The zero-range sequence's --resolution counts elements per process zone, not per
+    radius: its note names that measure and the potential's fewest (one per l_c), and that
+    resolution resolves every range (the advice used to be elements per radius, 25x finer)."""
+    sc = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
+    coarse = be.solve_with_resolution(sc, 0.5)
+    notes = [m for m in coarse.messages if "trapped by the mesh" in m]
+    assert notes and not coarse.converged
+    assert all("use --resolution 1 or more (elements per process zone" in m for m in notes)
+    enough = be.solve_with_resolution(sc, 1)
+    assert not [m for m in enough.messages if "trapped by the mesh" in m]
 
 
 def test_maugis_dugdale_needs_more_elements_per_process_zone():
