@@ -113,7 +113,7 @@ def calibration(k: float) -> tuple[float, float]:
         raise SceneError(
             "settings.graded_criterion",
             f"the calibrated criterion covers {exponents[0]:g} <= k <= {exponents[-1]:g} (got material.exponent "
-            f"k = {k:g}); use graded_criterion = 'eq42' (uncalibrated, any -1 < k < 1) there",
+            f"k = {k!r}); use graded_criterion = 'eq42' (uncalibrated, any -1 < k < 1) there",
         )
     return interpolate(exponents, ratios, uncertainties, k)
 

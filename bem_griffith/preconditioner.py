@@ -7,6 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.fft as sfft
 
+from contact_scene import SceneError
 from halfspace.kernel import lattice_symbol, point_kernel_transform
 from halfspace.operator import HalfSpaceOperator
 
@@ -51,7 +52,18 @@ def inverse_lattice_symbol(
     transform = point_kernel_transform(exponent)
     symbol = lattice_symbol(padded_shape, spacing, lambda q: coefficient * transform(q))
     symbol[0, 0] = np.max(symbol[[1, 0], [0, 1]]) if min(symbol.shape) > 1 else np.inf
-    return (1.0 / symbol).astype(np.float32)
+    inverse = 1.0 / symbol
+    finite = inverse[np.isfinite(symbol)]
+    single = np.finfo(np.float32)
+    # the inverse symbol ~ E* / h, carried in single precision: lengths and moduli whose ratio
+    # leaves its normal range would overflow, or lose its digits to underflow
+    if finite.size and not (single.tiny <= finite.min() and finite.max() <= single.max):
+        raise SceneError(
+            "material",
+            f"the preconditioner's inverse symbol ({finite.min():.3g} ... {finite.max():.3g}) leaves the "
+            "single-precision range in these units: rescale lengths and moduli, e.g. to the face's radius and E*",
+        )
+    return inverse.astype(np.float32)
 
 
 def lattice_inverse_diagonal(spacing: float, point_kernel: tuple[float, float]) -> float:

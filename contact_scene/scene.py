@@ -19,6 +19,13 @@ from .validation import check_fields, choice, flag, real, reals
 __all__ = ["Indenter", "Adhesion", "Loading", "Outputs", "Scene"]
 
 
+#: every scale of a scene (its modulus, face size, work of adhesion, and the stiffness, force
+#: and approach they make) must lie in this range: the solvers form products and squares of
+#: them, which then stay well inside double precision (about 1e-308 ... 1e308, with full
+#: precision above 2e-308 only), and so do their ratios
+SCALE_LIMITS = (1e-100, 1e100)
+
+
 @dataclass(frozen=True)
 class Indenter:
     """A rigid punch: its face (where it may touch) and the profile of that face.
@@ -54,7 +61,9 @@ class Indenter:
             rmax = max(math.hypot(x - ax, y - ay) for x in (x0, x1) for y in (y0, y1))
             if rmax >= self.profile.radius:
                 raise SceneError(
-                    "indenter.profile_radius", f"the face reaches r = {rmax:g}; a sphere needs radius > that"
+                    "indenter.profile_radius",
+                    f"the face's bounding box, over which the heights are evaluated, reaches r = {rmax:g} from "
+                    "the apex; a sphere needs radius > that",
                 )
 
     @property
@@ -151,6 +160,17 @@ class Loading:
         if self.press_approach is not None and self.press_force is not None:
             raise SceneError("loading.press_force", "give press_approach or press_force, not both")
         check_fields(self, "loading")
+        t = self.turning_points
+        # pull to t1, push back to t2, pull to t3, ...: a point that does not reverse the
+        # direction is no turning point (the methods would just go on past it)
+        for i in range(1, len(t)):
+            if (t[i] <= t[i - 1]) if i % 2 else (t[i] >= t[i - 1]):
+                given = ", ".join(f"{v:g}" for v in t)
+                raise SceneError(
+                    "loading.turning_points",
+                    "must alternate: pull to the first, push back above it to the second, pull below that to "
+                    f"the third, ... (got {given})",
+                )
         if self.pull_limit is not None and any(t <= self.pull_limit for t in self.turning_points):
             # the pull ends at the limit: a turning point at or beyond it would never be reached
             # by that rule, and the methods would each go there anyway
@@ -266,6 +286,53 @@ class Scene:
             raise SceneError(
                 "loading.press_approach", f"must be > 0 for a curved profile (got {self.loading.press_approach:g})"
             )
+        # the pull starts from the press, at press_approach (0 for a flat face pressed to no
+        # approach); a first turning point at or above it would be a push
+        start = self.loading.press_approach
+        if start is None and self.indenter.profile.is_flat and self.loading.press_force is None:
+            start = 0.0
+        if start is not None and self.loading.turning_points and self.loading.turning_points[0] >= start:
+            raise SceneError(
+                "loading.turning_points",
+                f"the first must lie below the press approach {start:g}, where the pull starts "
+                f"(got {self.loading.turning_points[0]:g})",
+            )
+        self._check_scales()
+
+    def _check_scales(self) -> None:
+        """Refuse units in which the scene's scales leave the floating-point range the solvers
+        need (:data:`SCALE_LIMITS`), naming the one value at fault or, for a combination, the
+        material."""
+        low, high = SCALE_LIMITS
+        material = self.material
+        if isinstance(material, Homogeneous):
+            modulus, modulus_field, modulus_name = material.effective_modulus, "material.youngs_modulus", "E*"
+        else:
+            assert isinstance(material, PowerLawGraded)  # checked above
+            modulus, modulus_field, modulus_name = material.surface_modulus, "material.surface_modulus", "E0"
+        length = self.indenter.shape.size
+        w = self.adhesion.work_of_adhesion
+        single = [(modulus_field, modulus_name, modulus), ("indenter", "the face's size", length)]
+        if w > 0:
+            single.append(("adhesion.work_of_adhesion", "the work of adhesion", w))
+        if self.adhesion.range is not None:
+            single.append(("adhesion.range", "the range", self.adhesion.range))
+        for name, what, value in single:
+            if not low <= value <= high:
+                raise SceneError(name, f"{what} ({value:.3g}) is outside [{low:g}, {high:g}]: rescale the units")
+        combined = [("stiffness E* a", modulus * length)]
+        if w > 0:
+            combined += [
+                ("force sqrt(E* w a^3)", math.sqrt(modulus * w) * length**1.5),
+                ("approach sqrt(w a / E*)", math.sqrt(w * length / modulus)),
+            ]
+        for what, value in combined:
+            if not low <= value <= high:
+                raise SceneError(
+                    "material",
+                    f"the scene's {what} ({value:.3g}) is outside [{low:g}, {high:g}]: rescale lengths and moduli, "
+                    "e.g. to the face's size and E*",
+                )
 
     @property
     def effective_modulus(self) -> float:

@@ -228,6 +228,17 @@ def test_a_grid_must_resolve_a_part_whose_bounding_box_meets_another():
     assert joined.smallest_part_incircle() == joined.incircle()
 
 
+def test_a_thin_ring_is_a_face_and_a_cut_equal_to_its_base_is_none():
+    """A cut keeps its outline, so the base minus itself leaves a few cells of the 2048-across
+    area raster (it was taken for a face of area 4e-6); a ring 1e-3 wide covers thousands of
+    them (2 pi 1e-3 / h^2, about 6600) and is a face."""
+    with pytest.raises(cs.SceneError, match="the shape is empty"):
+        cs.Difference(cs.Circle(1.0), (cs.Circle(1.0),))
+    ring = cs.Difference(cs.Circle(1.0), (cs.Circle(0.999),))
+    h = 2.0 / 2048
+    assert ring.area > 1000 * h * h
+
+
 def test_cut_faces_in_one_piece_keep_their_incircle():
     """A connected difference (and one of islands inside a union or transformed) answers as before."""
     holed = cs.Difference(cs.Square(2.0), (cs.Circle(0.3),))

@@ -489,6 +489,11 @@ _KENDALL = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.A
         (lambda: cs.Union(cs.Circle(1.0)), "indenter.parts"),
         (lambda: cs.Difference(cs.Circle(1.0), cs.Circle(0.5)), "indenter.cuts"),
         (lambda: cs.Difference(cs.Circle(1.0), (5,)), "indenter.cuts"),
+        # a cut equal to the base: its outline stays (the cuts remove interiors only), a few
+        # cells of the area's raster, and the face was taken for a tiny one
+        (lambda: cs.Difference(cs.Circle(1.0), (cs.Circle(1.0),)), "indenter.cuts"),
+        # more random pillars than the square's area holds: refused before 20000 * 50 draws
+        (lambda: cs.Brush(1.0, 0.05, layout="random", count=20_000, seed=0), "indenter.count"),
         # a solver handed another solver's settings, or not a scene
         (lambda: bg.solve(_KENDALL, EnergySettings()), "settings"),
         (lambda: bg.press(_KENDALL, FemSettings()), "settings"),
@@ -505,30 +510,68 @@ _KENDALL = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.A
         (lambda: crossval.reference("square", resolution=-5), "resolution"),
         (lambda: crossval.reference("kendall_circle", resolution="abc"), "resolution"),
         # the pull ends at its limit: a turning point beyond it is never reached
-        (lambda: cs.Loading(turning_points=(-0.5, -3.0), pull_limit=-1.0), "loading.turning_points"),
+        (lambda: cs.Loading(turning_points=(-0.5, 0.2, -3.0), pull_limit=-1.0), "loading.turning_points"),
+        # a turning point that does not reverse the direction, or a first one above the press
+        (lambda: cs.Loading(turning_points=(-1.0, -2.0)), "loading.turning_points"),
+        (lambda: cs.Loading(turning_points=(-1.0, 0.5, 0.7)), "loading.turning_points"),
+        (
+            lambda: cs.Scene(
+                cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0), cs.Adhesion(1.0), cs.Loading(turning_points=(1.0,))
+            ),
+            "loading.turning_points",
+        ),
         # turning points are an ordered list, not the keys of a mapping
         (lambda: cs.Loading(turning_points={-1.0: 2}), "loading.turning_points"),
         (lambda: cs.Outputs(snapshots={-0.5}), "outputs.snapshots"),
-        # units whose ratio leaves floating point (the inverse symbol underflowed: ZeroDivisionError)
+        # a scene's own scales outside what double precision carries through the solvers: each
+        # value at fault by name (a subnormal modulus had crashed the FEM as "a solver bug"), a
+        # combination as the material
+        (
+            lambda: cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1e-320, 0.3), cs.Adhesion(1.0)),
+            "material.youngs_modulus",
+        ),
+        # E* = E / (1 - nu^2) overflows: the material alone is within its declared range
+        (
+            lambda: cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.7e308, 0.5), cs.Adhesion(1.0)),
+            "material.youngs_modulus",
+        ),
+        (
+            lambda: cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1e120, 1.0, 0.5), cs.Adhesion(1.0)),
+            "material.surface_modulus",
+        ),
+        (lambda: cs.Scene(cs.Indenter(cs.Circle(1e-120)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0)), "indenter"),
+        (
+            lambda: cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1e-120)),
+            "adhesion.work_of_adhesion",
+        ),
+        (lambda: cs.Scene(cs.Indenter(cs.Circle(1e-60)), cs.Homogeneous(1e-60, 0.3), cs.Adhesion(1.0)), "material"),
+        # units the scene takes whose ratio leaves the solvers' precision (the inverse symbol
+        # underflowed: ZeroDivisionError; overflowed in single precision: a warning and no convergence)
         (
             lambda: bg.solve(
-                cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1e-300, 0.3), cs.Adhesion(1.0)),
+                cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1e50, 0.3), cs.Adhesion(1.0)),
                 GriffithSettings(grid=cs.Grid(elements_per_radius=8)),
             ),
             "material",
         ),
         (
             lambda: bg.solve(
-                cs.Scene(cs.Indenter(cs.Circle(1e100)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0)),
+                cs.Scene(cs.Indenter(cs.Circle(1e45)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0)),
                 GriffithSettings(grid=cs.Grid(elements_per_radius=8)),
             ),
             "material",
         ),
         (
             lambda: be.solve(
-                cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1e-300, 0.3), cs.Adhesion(1.0, 0.05)),
+                cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1e-50, 0.3), cs.Adhesion(1.0, 0.05)),
                 EnergySettings(grid=cs.Grid(elements_per_radius=8)),
             ),
+            "material",
+        ),
+        # the zero-range sequence's ranges (~ sqrt(l_c w / E*)) below single precision: the
+        # displacements underflowed and the minimiser ran on without end
+        (
+            lambda: be.solve(cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1e-90))),
             "material",
         ),
         # a face whose area under- or overflows: the grid by elements per radius named it grid.spacing

@@ -133,6 +133,16 @@ class Brush(Union):
         rng = np.random.default_rng(self.seed)
         mixed = self.layout == "mixed"
         radius, half_side = self.pillar_radius, self.side / 2
+        # the pillars' bounding boxes (side 2 r, r >= radius / 2 when mixed) lie apart inside the
+        # square: more of them than the square's area holds cannot be placed, whatever the draw
+        # (refused at once rather than after all the attempts)
+        smallest_box = (radius if mixed else 2 * radius) ** 2
+        if self.count * smallest_box > self.side**2:
+            raise SceneError(
+                "indenter.count",
+                f"{self.count} pillars' bounding boxes ({smallest_box:.3g} each at least) exceed the square's area "
+                f"{self.side**2:.3g}; lower count or pillar_radius",
+            )
         placed: list[tuple[float, float, float]] = []  # (x, y, half-width of the bounding box)
         # pillars filed by square buckets of side ``reach``: two pillars closer than the gap test
         # below allows lie in neighbouring buckets, so each candidate is tested against those

@@ -151,6 +151,12 @@ def _width_estimate(piece: Shape) -> float:
     return piece.area / (math.sqrt(2) * piece.size)
 
 
+#: cells across the raster that measures a difference's area (``numerical.raster_area``)
+AREA_RASTER_CELLS = 2048
+#: a difference covering fewer cells of that raster is empty (its cuts' outlines only)
+EMPTY_CELLS = 16
+
+
 def _interior(shape: Shape, x, y):
     """Open interior: a cut removes its interior, so the cut's boundary stays part of the face."""
     if hasattr(shape, "signed_distance"):
@@ -198,6 +204,16 @@ class Difference(Shape):
                     "indenter.base", f"the base's area underflows (size {self.base.size:g}): rescale lengths"
                 )
             raise SceneError("indenter.cuts", "the cuts remove the whole face; the shape is empty")
+        # the cuts keep their boundaries, so a cut equal to the base leaves a few cells of its
+        # outline on the raster that measures the area: a face of fewer cells has no interior
+        # that raster can tell from such an outline
+        cell = self.base.size / AREA_RASTER_CELLS
+        if not self._exact and self.area < EMPTY_CELLS * cell**2:
+            raise SceneError(
+                "indenter.cuts",
+                f"the cuts leave an area of {self.area:.3g}, under {EMPTY_CELLS} cells of the "
+                f"{AREA_RASTER_CELLS}-across raster that measures it (the cuts' own outlines): the shape is empty",
+            )
 
     def contains(self, x, y):
         out = self.base.contains(x, y)
@@ -223,7 +239,7 @@ class Difference(Shape):
     def area(self):
         if self._exact:
             return float(self.base.area - sum(c.area for c in self.cuts))
-        return numerical.raster_area(self)
+        return numerical.raster_area(self, AREA_RASTER_CELLS)
 
     @property
     def nominal_area(self):
