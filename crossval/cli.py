@@ -270,7 +270,8 @@ def _print_result(res) -> None:
 def compare_cmd(file, resolution, quick, as_json):
     """Run every method that applies to FILE; check against theory and each other.
 
-    Exit status 1 when a check fails."""
+    Values that no check holds (no error bar on this face, nothing to compare with) are listed
+    as unchecked.  Exit status 1 when a check fails."""
     from .compare import compare, reference_source
 
     sc = load_scene(file)
@@ -289,6 +290,7 @@ def compare_cmd(file, resolution, quick, as_json):
                     "passed": cmp.passed,
                     "theory": cmp.theory,
                     "skipped": cmp.skipped,
+                    "unchecked": cmp.unchecked,
                     "results": {
                         k: {
                             q: getattr(r, q)
@@ -338,6 +340,11 @@ def compare_cmd(file, resolution, quick, as_json):
             click.echo(f"skipped {k}: {why}")
         for c in cmp.checks:
             click.echo(f"{c.label:<6}" + c.explain())
+        for k, qs in cmp.unchecked.items():
+            click.echo(
+                f"unchecked {k}: {', '.join(qs)} (no check holds it: the method gives it no error bar "
+                "on this scene, or nothing else has a value to compare it with)"
+            )
         for r in cmp.results.values():
             for m in r.messages:
                 click.echo(f"note ({r.method}): {m}")

@@ -212,6 +212,28 @@ class Comparison:
         """Whether every check passed."""
         return all(c.passed for c in self.checks)
 
+    @property
+    def unchecked(self) -> dict[str, tuple[str, ...]]:
+        """``{method: quantities}``: the methods' values that no check holds to anything.
+
+        No closed form, no reference-table entry, and no error bar of this method (or of a
+        second one) on this scene: listed so that a reader does not take silence for agreement."""
+        quantities: tuple[str, ...] = ("stiffness",)
+        if self.scene.adhesion.work_of_adhesion > 0:
+            quantities = ("pulloff_force", "pulloff_approach", "stiffness")
+        out = {}
+        for name in self.results:
+            if name not in METHODS:  # a same-grid partner solve, there for one check only
+                continue
+            missing = tuple(
+                q
+                for q in quantities
+                if not any(c.quantity.split(" ")[0] == q and name in c.method.split(" vs ") for c in self.checks)
+            )
+            if missing:
+                out[name] = missing
+        return out
+
 
 def reference_source(theory: dict, quantity: str) -> str:
     """Where the reference value of ``quantity`` in :func:`reference_values`' dict comes from:

@@ -543,7 +543,8 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
         asks for them, are those of the pull-off state, written to ``fields_path`` (which
         ``info["fields_path"]`` names).  No snapshots are recorded: a message names the
         approaches asked for.  An adhesion range is ignored: the result is the zero-range
-        (Griffith) limit, and a message says so.
+        (Griffith) limit, and a message says so; so are turning points (the monotonic pull's
+        F_A is the same, and a message names them).
 
     Raises
     ------
@@ -624,6 +625,13 @@ def solve(scene: Scene, settings: FemSettings | None = None, *, callback=None) -
             f"fem_reference recorded no snapshot at {len(wanted)} of the approaches asked for: "
             + ", ".join(f"d = {x:g}" for x in wanted)
             + " (it records no snapshots: it solves the pull-off state only)"
+        )
+    if scene.loading.turning_points:
+        msgs.append(
+            "fem_reference traces the monotonic pull only, not the turning points "
+            + ", ".join(f"d = {t:g}" for t in scene.loading.turning_points)
+            + f": before d_c = {d_c:.6g} they retrace the same line F = K d, past it the punch has "
+            "detached on the first pull, so F_A is that pull's"
         )
     range_message = zero_range_note(scene, "fem_reference")
     if range_message is not None:

@@ -53,6 +53,24 @@ def test_compare_skips_fem_for_a_square_and_checks_bounds():
     assert {"pulloff_force", "pulloff_approach", "stiffness"} <= set(cmp.theory["bars"])
     failed = [c.explain() for c in cmp.checks if not c.passed]
     assert not failed, failed
+    # and says which values nothing held: the energy BEM's force, not the Griffith BEM's
+    assert "pulloff_force" in cmp.unchecked["bem_energy"]
+    assert "pulloff_force" not in cmp.unchecked.get("bem_griffith", ())
+
+
+def test_compare_names_the_values_no_check_holds():
+    """An ellipse has bounds but no closed form or table entry, and neither BEM a force bar on
+    it: the two forces (5 % apart at this resolution) enter no check, and the comparison says
+    so instead of listing only the checks that passed."""
+    sc = cs.Scene(cs.Indenter(cs.Ellipse(1.0, 0.5)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0))
+    cmp = crossval.compare(sc, resolution=16, resolutions={"bem_energy": 1.0})
+    assert cmp.passed
+    assert cmp.unchecked == {
+        "bem_griffith": ("pulloff_force", "pulloff_approach"),
+        "bem_energy": ("pulloff_force", "pulloff_approach"),
+    }
+    # the stiffness is held between the methods, so it is not listed
+    assert any(c.quantity == "stiffness" and " vs " in c.method for c in cmp.checks)
 
 
 def test_a_failing_check_explains_itself():

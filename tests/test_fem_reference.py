@@ -474,6 +474,14 @@ def test_snapshots_and_a_range_are_named_as_not_done():
     assert len(notes) == 1 and "ignored" in notes[0] and "zero-range" in notes[0]
     plain = fr.solve(scene(mat), fr.FemSettings(grading=2, order=2))
     assert plain.pulloff_force == r.pulloff_force and not any("range" in m for m in plain.messages)
+    # turning points: the monotonic pull's F_A, and a note that the path was not traced
+    turned = fr.solve(
+        dataclasses.replace(scene(mat), loading=cs.Loading(turning_points=(-0.5, 0.2))),
+        fr.FemSettings(grading=2, order=2),
+    )
+    assert turned.pulloff_force == plain.pulloff_force
+    assert [m for m in turned.messages if "not the turning points d = -0.5, d = 0.2" in m]
+    assert not any("turning" in m for m in plain.messages)
 
 
 @pytest.mark.parametrize("k,grading", [(1e-9, 4.0), (1e-6, 2.0), (1e-3, 4.0)])
