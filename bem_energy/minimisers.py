@@ -83,12 +83,16 @@ def _length_scale(prob: EnergyProblem, d: float, adhesive: bool) -> float:
 #: with adhesion, the pressure unit of the convergence measure is at most this multiple of the
 #: potential's peak stress w / rho.  The element's own unit, rho / C_00, grows with the
 #: elements per process zone l_c: about 0.8 l_c / h times w / rho on a homogeneous body, so
-#: 1.6 w / rho at the exponential potential's default two per l_c, 12.9 at Maugis-Dugdale's
-#: sixteen, less on graded bodies.  The cap leaves every default grid alone and acts where the
-#: zone is resolved far more finely than the default: long ranges, stiff bodies and weak
-#: adhesion, where l_c is many times the face and the element unit so large against the
-#: adhesive stress that a minimum accepted at ``gtol`` could leave the adhesive tractions
-#: unresolved (the pull-off force then came out at a fraction of its value, or zero)
+#: 1.6 w / rho at the exponential potential's two per l_c, 12.9 at Maugis-Dugdale's sixteen,
+#: less on graded bodies.  The cap leaves the zero-range sequences and every grid of up to
+#: about 20 elements per l_c as they were; it acts on longer zones (a finite range with l_c
+#: above about 0.6 a on the default 32 per radius; long ranges, stiff bodies, weak adhesion),
+#: where the element unit outgrows the adhesive stress until a minimum accepted at ``gtol``
+#: left the adhesive tractions unresolved (the pull-off force then came out at a fraction of
+#: its value, or zero).  There it costs iterations; L-BFGS-B, whose objective (the adhesive
+#: energy, about -w A, plus changes of relative size a / l_c) loses those changes to round-off,
+#: can stall short of the tolerance at l_c >> a and then says so (not converged); the default
+#: projected CG sums its steps' energy changes cell by cell and converges
 ADHESIVE_UNIT = 16.0
 
 

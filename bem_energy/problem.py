@@ -692,17 +692,20 @@ def build_problem(
     if kernel not in KERNELS:
         raise SceneError("settings.kernel", f"must be one of {', '.join(map(repr, sorted(KERNELS)))} (got {kernel!r})")
     if potential is not None:
-        # the displacements, of the order of the range, go through single-precision transforms:
-        # a range below float32's normal numbers underflowed them to zero, and the minimiser
-        # then made no progress (it ran on without end); a thousandth of the range keeps its digits
+        # the displacements go through single-precision transforms, and the gaps the potential
+        # acts over are of the order of its range: a range below float32's normal numbers
+        # underflowed them to zero, and the minimiser then made no progress (it ran on without
+        # end); a thousandth of the range keeps its digits
         single = np.finfo(np.float32)
         low, high = float(single.tiny) * 1e3, float(single.max) * 1e-3
         if not low <= potential.range <= high:
+            given = scene.adhesion.range is not None
             raise SceneError(
                 "material",
-                f"the interaction range ({potential.range:.3g}), the scale of the displacements, leaves the "
-                f"single-precision range of the transforms ({low:.3g} ... {high:.3g}) in these units: rescale "
-                "lengths, moduli and the work of adhesion, e.g. to the face's radius and E*",
+                f"the interaction range {potential.range:.3g}"
+                + ("" if given else " (the one a zero-range sequence sets from w, the modulus and the face)")
+                + f" leaves the single-precision range of the transforms ({low:.3g} ... {high:.3g}) in these "
+                "units: rescale lengths, moduli and the work of adhesion, e.g. to the face's radius and E*",
             )
     homogeneous, graded = KERNELS[kernel]
     shape = scene.indenter.shape

@@ -54,7 +54,7 @@ import bem_energy as be
 import contact_scene as cs
 from bem_energy.continuation import LoadingPath, pull
 from bem_energy.equilibria import Equilibria
-from bem_energy.minimisers import Minimum
+from bem_energy.minimisers import Minimum, unit_ratio
 from bem_energy.peak import force_maximum
 from bem_energy.problem import EnergyProblem, build_problem
 from bem_energy.resolution import critical_approach_scale
@@ -110,8 +110,9 @@ class PeerSystem:
         )
         self.shape = tuple(self.substrate.nb_subdomain_grid_pts)
         # the physical gradient (cell (P + phi')) at which ours stops: gtol in units of the
-        # pressure that displaces one element by rho (bem_energy.minimisers.projected_gradient)
-        self.unit = prob.cell * self.rho / prob.self_compliance
+        # pressure that displaces one element by rho, capped at a multiple of the adhesive
+        # stress (bem_energy.minimisers.projected_gradient, unit_ratio)
+        self.unit = prob.cell * self.rho / prob.self_compliance * unit_ratio(prob, self.rho, True)
         self.gtol = gtol
         self.options = dict(gtol=gtol * self.unit, ftol=0.0, maxcor=memory, maxiter=max_iterations)
         self.seconds = 0.0

@@ -19,10 +19,12 @@ from .validation import check_fields, choice, flag, real, reals
 __all__ = ["Indenter", "Adhesion", "Loading", "Outputs", "Scene"]
 
 
-#: every scale of a scene (its modulus, face size, work of adhesion, and the stiffness, force
-#: and approach they make) must lie in this range: the solvers form products and squares of
-#: them, which then stay well inside double precision (about 1e-308 ... 1e308, with full
-#: precision above 2e-308 only), and so do their ratios
+#: a scene's main scales (its modulus E* or E0, the face's size, the work of adhesion, the range,
+#: and the stiffness, force and approach the modulus, size and work make) must lie in this
+#: range: the solvers form products and squares of them, which then stay well inside double
+#: precision (about 1e-308 ... 1e308, with full precision above 2e-308 only), and so do their
+#: ratios.  Lengths of the loading and the profile and a graded body's reference depth are not
+#: checked here
 SCALE_LIMITS = (1e-100, 1e100)
 
 
@@ -320,18 +322,19 @@ class Scene:
         for name, what, value in single:
             if not low <= value <= high:
                 raise SceneError(name, f"{what} ({value:.3g}) is outside [{low:g}, {high:g}]: rescale the units")
-        combined = [("stiffness E* a", modulus * length)]
+        M = modulus_name
+        combined = [(f"stiffness {M} a", modulus * length)]
         if w > 0:
             combined += [
-                ("force sqrt(E* w a^3)", math.sqrt(modulus * w) * length**1.5),
-                ("approach sqrt(w a / E*)", math.sqrt(w * length / modulus)),
+                (f"force sqrt({M} w a^3)", math.sqrt(modulus * w) * length**1.5),
+                (f"approach sqrt(w a / {M})", math.sqrt(w * length / modulus)),
             ]
         for what, value in combined:
             if not low <= value <= high:
                 raise SceneError(
                     "material",
                     f"the scene's {what} ({value:.3g}) is outside [{low:g}, {high:g}]: rescale lengths and moduli, "
-                    "e.g. to the face's size and E*",
+                    f"e.g. to the face's size and {M}",
                 )
 
     @property

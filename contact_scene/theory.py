@@ -1165,7 +1165,10 @@ def long_range_flat_circle_force(*, E_star: float, radius: float, work: float, r
     on the circle, largest at the centre (2 sigma0 a / E*), which is where it touches, and the
     gaps are g(r) = u(0) - u(r).  Exponential potential, traction sigma0 exp(-g / rho) ~
     sigma0 (1 - g / rho): F_A = pi a^2 sigma0 (1 - (u(0) - mean u) / rho), so
-    c = 2 - 16 / (3 pi) (:data:`UNIFORM_DISC_DISHING`); the next order is not derived.
+    c = 2 - 16 / (3 pi) (:data:`UNIFORM_DISC_DISHING`); the next order, of eps^2, is not
+    derived (nor the maximum's shift slightly into contact, where the central bulge pressed
+    against the punch gains adhesion linearly and costs a Hertz-like reaction, an eps^3
+    effect).  An asymptotic result for eps << 1.
     Maugis-Dugdale, traction sigma0 while g < rho: every gap is below the range at the last
     touch while u(0) - u(a) = (2 - 4/pi) sigma0 a / E* < rho, i.e. eps < 1 / (2 - 4/pi), and
     then F_A = pi a^2 sigma0 exactly (c = 0).
@@ -1191,13 +1194,16 @@ def long_range_flat_circle_force(*, E_star: float, radius: float, work: float, r
     Raises
     ------
     ValueError
-        For an unknown potential, or a Maugis-Dugdale process zone too short for the exact
-        result (eps >= 1 / (2 - 4/pi)).
+        For an unknown potential, a Maugis-Dugdale process zone too short for the exact result
+        (eps >= 1 / (2 - 4/pi)), or an exponential one so short that the first-order force is
+        not positive (eps >= 1 / c; the expansion is for eps << 1).
     """
     sigma0 = work / range
     eps = sigma0 * radius / (E_star * range)
     area = math.pi * radius**2
     if potential == "exponential":
+        if UNIFORM_DISC_DISHING * eps >= 1.0:
+            raise ValueError(f"eps = a / l_c = {eps:g} is not below 1 / c: the first order is no force there")
         return area * sigma0 * (1.0 - UNIFORM_DISC_DISHING * eps)
     if potential == "maugis_dugdale":
         if eps * (2.0 - 4.0 / math.pi) >= 1.0:

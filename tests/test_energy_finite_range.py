@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 import bem_energy as be
+import bem_energy.minimisers as minimisers
 import contact_scene as cs
 from bem_energy.potentials import PROCESS_ZONE_ELEMENTS
 from contact_scene import theory as T
@@ -75,25 +76,25 @@ def stiff_ratio(res, scene):
 
 @pytest.mark.parametrize("eps", [0.1, 0.05, 0.025])
 def test_long_range_force_follows_the_stiff_limit_to_first_order(eps):
-    """F_A / (A sigma0) = 1 - c eps + O(eps^2), c = 2 - 16 / (3 pi): the adhesive traction's
-    first-order dishing of the surface (``theory.long_range_flat_circle_force``).  The shortfall
-    over c eps, r, tends to 1: r - 1 = -0.044, -0.013, -0.0023, +0.0004 at eps = 0.2, 0.1, 0.05,
-    0.025 on 16, 32 and 64 per radius alike (to 1e-3), so |r - 1| <= 2 eps^2 here.  The force
-    maximum is a kink (where the surface leaves the punch), located to a tight snap tolerance
-    so that its error stays far below the shortfall.  E instead of E* moves r by 10 %."""
+    """F_A / (A sigma0) = 1 - c eps + b eps^2 + e eps^3 + ..., c = 2 - 16 / (3 pi): the adhesive
+    traction's first-order dishing of the surface (``theory.long_range_flat_circle_force``).
+    The residual D = F_A / (A sigma0) - (1 - c eps), measured at eps = 0.2 ... 0.00625 on 32 and
+    64 per radius alike: +2.6e-3, +3.8e-4, +3.3e-5, -3.5e-6, then a floor of about 5e-6 (the
+    maximum's location to the snap tolerance, the raster); fitted b ~ 0.01, e ~ 0.3 (an
+    independent second-order estimate gave |b| ~ 0.015).  So |D| <= 0.02 eps^2 + 0.5 eps^3 +
+    1e-5.  E instead of E* would move D by 0.03 eps, several times that at every eps here."""
     sc = stiff(eps)
     res = be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=32), snap_tolerance=1e-5))
     assert res.converged, res.messages
     ratio, eps_scene = stiff_ratio(res, sc)
     assert eps_scene == pytest.approx(eps)
-    r = (1 - ratio) / (T.UNIFORM_DISC_DISHING * eps)
-    assert abs(r - 1) <= 2 * eps**2, r
     E_star = STIFF_E / (1 - STIFF_NU**2)
     closed = T.long_range_flat_circle_force(
         E_star=E_star, radius=1.0, work=1.0, range=sc.adhesion.range, potential="exponential"
     )
-    # the closed form on the nominal circle, the solver on its raster: their ratio is the areas'
-    assert res.pulloff_force / closed == pytest.approx(res.face_area / math.pi, abs=2 * eps**3)
+    # each force over its own area (the nominal circle's, the raster's) times sigma0
+    D = ratio - closed / (math.pi * 1.0 / sc.adhesion.range)
+    assert abs(D) <= 0.02 * eps**2 + 0.5 * eps**3 + 1e-5, D
 
 
 @pytest.mark.parametrize("eps", [0.1, 0.5])
@@ -101,9 +102,12 @@ def test_maugis_dugdale_long_range_force_is_the_peak_stress_times_the_area(eps):
     """Every gap stays below the range at the last touch (eps < 1 / (2 - 4/pi)), so each cell
     pulls with exactly sigma0: F_A = A sigma0 to the minimisers' tolerance."""
     sc = stiff(eps, potential="maugis_dugdale")
-    res = be.solve(sc, be.EnergySettings(grid=cs.Grid(elements_per_radius=32)))
+    settings = be.EnergySettings(grid=cs.Grid(elements_per_radius=32))
+    res = be.solve(sc, settings)
     assert res.converged, res.messages
-    assert stiff_ratio(res, sc)[0] == pytest.approx(1.0, abs=1e-5)
+    # the force is summed from the elastic pressures, each within the convergence measure's
+    # unit (at most ADHESIVE_UNIT sigma0) times gtol of the adhesive traction
+    assert stiff_ratio(res, sc)[0] == pytest.approx(1.0, abs=minimisers.ADHESIVE_UNIT * settings.gtol)
 
 
 STIFF_CASES = {
@@ -111,6 +115,7 @@ STIFF_CASES = {
     "rho = 1000 a": dict(rho=1000.0),
     "E = 1e6": dict(rho=1.0, E=1e6),
     "w = 1e-4": dict(rho=1.0, w=1e-4),
+    "Maugis-Dugdale, rho = 100 a": dict(rho=100.0, potential="maugis_dugdale"),
     "Maugis-Dugdale, rho = 1000 a": dict(rho=1000.0, potential="maugis_dugdale"),
 }
 
@@ -121,22 +126,23 @@ def test_a_very_long_process_zone_still_resolves_the_adhesive_stress(case):
     C_00) is then 1e5 ... 1e7 times the adhesive stress w / rho, and a minimum accepted in it
     took the first trial for converged (F_A 12 % low at rho = 100, zero at 1000).  With the
     unit capped at ``ADHESIVE_UNIT`` w / rho: F_A / (A sigma0) lies between 1 - c eps less the
-    snap tolerance's share (the kink is located to snap_tolerance times the pull's scale) and
-    1 (no cell pulls harder than sigma0)."""
+    snap tolerance's share (the maximum is located to snap_tolerance times the pull's scale)
+    and 1 (no cell pulls harder than sigma0) plus the minimisers' tolerance.  The default
+    projected CG; L-BFGS-B stalls at its objective's round-off here (see ``ADHESIVE_UNIT``)."""
     sc = stiff(**STIFF_CASES[case])
     settings = be.EnergySettings()
     res = be.solve(sc, settings)
     assert res.converged, res.messages
     ratio, eps = stiff_ratio(res, sc)
     assert eps <= 1e-4
-    # the pull's scale is rho plus the critical approach, which is below rho in every case
-    assert 1 - T.UNIFORM_DISC_DISHING * eps - 2 * settings.snap_tolerance <= ratio <= 1 + 1e-12
+    # the pull's scale is rho plus the critical approach, which is below rho in every case; the
+    # force, summed from the elastic pressures, may exceed A sigma0 by the minimisers' tolerance
+    upper = 1 + minimisers.ADHESIVE_UNIT * settings.gtol
+    assert 1 - T.UNIFORM_DISC_DISHING * eps - 2 * settings.snap_tolerance <= ratio <= upper
 
 
 def test_an_uncapped_pressure_unit_misses_the_adhesive_stress(monkeypatch):
     """The mutant: the element's unit alone (no cap) accepts the first trial at l_c = 1e6 a."""
-    import bem_energy.minimisers as minimisers
-
     monkeypatch.setattr(minimisers, "ADHESIVE_UNIT", math.inf)
     sc = stiff(rho=1000.0)
     res = be.solve(sc, be.EnergySettings())

@@ -228,15 +228,29 @@ def test_a_grid_must_resolve_a_part_whose_bounding_box_meets_another():
     assert joined.smallest_part_incircle() == joined.incircle()
 
 
-def test_a_thin_ring_is_a_face_and_a_cut_equal_to_its_base_is_none():
-    """A cut keeps its outline, so the base minus itself leaves a few cells of the 2048-across
-    area raster (it was taken for a face of area 4e-6); a ring 1e-3 wide covers thousands of
-    them (2 pi 1e-3 / h^2, about 6600) and is a face."""
+def test_a_thin_ring_is_a_face_and_cuts_that_cover_the_base_leave_none():
+    """A cut keeps its outline, so the base minus itself, or a square minus two rectangles
+    meeting along its midline, leaves cells of outline on the area's raster (taken for faces of
+    area 4e-6 and 8e-3); the closed cuts cover them, and the shape is empty.  A ring 1e-3 wide
+    (about 6600 cells of that raster) lies outside its closed cut and is a face."""
     with pytest.raises(cs.SceneError, match="the shape is empty"):
         cs.Difference(cs.Circle(1.0), (cs.Circle(1.0),))
+    halves = (cs.Rectangle(1.0, 2.0, center=(-0.5, 0.0)), cs.Rectangle(1.0, 2.0, center=(0.5, 0.0)))
+    with pytest.raises(cs.SceneError, match="the shape is empty"):
+        cs.Difference(cs.Square(2.0), halves)
     ring = cs.Difference(cs.Circle(1.0), (cs.Circle(0.999),))
     h = 2.0 / 2048
     assert ring.area > 1000 * h * h
+    # one half cut away leaves the other half
+    assert cs.Difference(cs.Square(2.0), halves[:1]).area == pytest.approx(2.0, rel=0.01)
+
+
+def test_a_brush_with_more_pillars_than_its_square_holds_is_refused_at_once():
+    """20000 pillars of radius 0.05 need bounding boxes of 200 times the unit square: refused
+    by the area bound, not after 50 draws per pillar."""
+    with pytest.raises(cs.SceneError, match="exceed the square's area") as caught:
+        cs.Brush(1.0, 0.05, layout="random", count=20_000, seed=0)
+    assert caught.value.field == "indenter.count"
 
 
 def test_cut_faces_in_one_piece_keep_their_incircle():

@@ -255,3 +255,27 @@ def test_force_at_nominal_area_follows_eq39_under_a_change_of_size(k):
     assert T.force_at_nominal_area(F(a), area=math.pi * a**2, nominal_area=math.pi * b**2, k=k) == pytest.approx(
         F(b), rel=1e-13
     )
+
+
+def test_long_range_flat_circle_force_scales_with_the_units_and_refuses_outside_its_range():
+    """Lengths times L and stresses times S: w scales as S L, rho as L, F_A as S L^2 (eps is
+    unchanged).  The exponential potential's first-order force falls below the peak-stress one
+    by c eps; Maugis-Dugdale's is that exactly, up to the edge gap reaching the range."""
+    args = dict(E_star=1.3, radius=0.7, work=0.4, range=2.0)
+    for potential in ("exponential", "maugis_dugdale"):
+        F = T.long_range_flat_circle_force(**args, potential=potential)
+        for L, S in ((1e-6, 1e9), (1e3, 1e-2)):
+            scaled = dict(E_star=1.3 * S, radius=0.7 * L, work=0.4 * S * L, range=2.0 * L)
+            assert T.long_range_flat_circle_force(**scaled, potential=potential) == pytest.approx(F * S * L**2)
+    peak = math.pi * 0.7**2 * 0.4 / 2.0
+    eps = 0.4 * 0.7 / (1.3 * 2.0**2)
+    assert T.long_range_flat_circle_force(**args, potential="maugis_dugdale") == pytest.approx(peak)
+    assert T.long_range_flat_circle_force(**args, potential="exponential") == pytest.approx(
+        peak * (1 - (2 - 16 / (3 * math.pi)) * eps)
+    )
+    short = dict(args, range=0.2)  # eps = 5.4: past either potential's range of validity
+    for potential in ("exponential", "maugis_dugdale"):
+        with pytest.raises(ValueError, match="eps"):
+            T.long_range_flat_circle_force(**short, potential=potential)
+    with pytest.raises(ValueError, match="potential"):
+        T.long_range_flat_circle_force(**args, potential="lennard_jones")

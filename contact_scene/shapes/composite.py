@@ -153,8 +153,16 @@ def _width_estimate(piece: Shape) -> float:
 
 #: cells across the raster that measures a difference's area (``numerical.raster_area``)
 AREA_RASTER_CELLS = 2048
-#: a difference covering fewer cells of that raster is empty (its cuts' outlines only)
-EMPTY_CELLS = 16
+#: a difference with less than this fraction of its base's area is checked for emptiness
+#: against its closed cuts (an area made of the cuts' outlines only)
+SMALL_AREA = 0.01
+
+
+def _closure(shape: Shape, x, y):
+    """Closed set, with the boundary band that :func:`_interior` leaves to the face."""
+    if hasattr(shape, "signed_distance"):
+        return shape.signed_distance(x, y) <= shape.tolerance
+    return shape.contains(x, y)
 
 
 def _interior(shape: Shape, x, y):
@@ -204,16 +212,23 @@ class Difference(Shape):
                     "indenter.base", f"the base's area underflows (size {self.base.size:g}): rescale lengths"
                 )
             raise SceneError("indenter.cuts", "the cuts remove the whole face; the shape is empty")
-        # the cuts keep their boundaries, so a cut equal to the base leaves a few cells of its
-        # outline on the raster that measures the area: a face of fewer cells has no interior
-        # that raster can tell from such an outline
-        cell = self.base.size / AREA_RASTER_CELLS
-        if not self._exact and self.area < EMPTY_CELLS * cell**2:
+        # the cuts keep their boundaries, so cuts that cover the base (one equal to it, or two
+        # meeting along a line) leave their outlines, which the area's raster counts: a small
+        # area is checked against the closed cuts, and a face they cover entirely is empty
+        if not self._exact and self.area < SMALL_AREA * self.base.area and not self._beyond_closed_cuts():
             raise SceneError(
                 "indenter.cuts",
-                f"the cuts leave an area of {self.area:.3g}, under {EMPTY_CELLS} cells of the "
-                f"{AREA_RASTER_CELLS}-across raster that measures it (the cuts' own outlines): the shape is empty",
+                f"the cuts cover the whole face but for their own outlines (area {self.area:.3g} on the raster "
+                "that measures it): the shape is empty",
             )
+
+    def _beyond_closed_cuts(self) -> bool:
+        """Whether any cell of the area's raster lies in the base outside every closed cut."""
+        X, Y, _ = numerical.fine_grid(self, AREA_RASTER_CELLS)
+        out = self.base.contains(X, Y)
+        for c in self.cuts:
+            out &= ~_closure(c, X, Y)
+        return bool(out.any())
 
     def contains(self, x, y):
         out = self.base.contains(x, y)
