@@ -10,10 +10,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from .errors import SceneError
 from .materials import Homogeneous, Material, PowerLawGraded
 from .profiles import Flat, Profile, Sphere
-from .shapes import Circle, Shape
+from .shapes import Circle, PolygonalShape, Shape
 from .validation import check_fields, choice, flag, real, reals
 
 __all__ = ["Indenter", "Adhesion", "Loading", "Outputs", "Scene"]
@@ -26,6 +28,20 @@ __all__ = ["Indenter", "Adhesion", "Loading", "Outputs", "Scene"]
 #: ratios.  Lengths of the loading and the profile and a graded body's reference depth are not
 #: checked here
 SCALE_LIMITS = (1e-100, 1e100)
+
+
+def _reach(shape: Shape, apex: tuple[float, float]) -> tuple[float, str]:
+    """The largest distance from ``apex`` to a point of the face, and what it is measured on:
+    exact for a circle and a polygon (its farthest vertex), else the bounding box's corners
+    (an upper bound)."""
+    ax, ay = apex
+    if isinstance(shape, Circle):
+        return math.hypot(shape.center[0] - ax, shape.center[1] - ay) + shape.radius, "the face"
+    if isinstance(shape, PolygonalShape):
+        v = np.asarray(shape.vertices, float)
+        return float(np.max(np.hypot(v[:, 0] - ax, v[:, 1] - ay))), "the face"
+    x0, y0, x1, y1 = shape.bounds
+    return max(math.hypot(x - ax, y - ay) for x in (x0, x1) for y in (y0, y1)), "the face's bounding box"
 
 
 @dataclass(frozen=True)
@@ -58,14 +74,11 @@ class Indenter:
         if not isinstance(self.profile, Profile):
             raise SceneError("indenter.profile", f"must be a profile (got {type(self.profile).__name__})")
         if isinstance(self.profile, Sphere):
-            x0, y0, x1, y1 = self.shape.bounds
-            ax, ay = self.profile.apex
-            rmax = max(math.hypot(x - ax, y - ay) for x in (x0, x1) for y in (y0, y1))
+            rmax, what = _reach(self.shape, self.profile.apex)
             if rmax >= self.profile.radius:
                 raise SceneError(
                     "indenter.profile_radius",
-                    f"the face's bounding box, over which the heights are evaluated, reaches r = {rmax:g} from "
-                    "the apex; a sphere needs radius > that",
+                    f"{what} reaches r = {rmax:g} from the apex; a sphere needs radius > that",
                 )
 
     @property

@@ -609,3 +609,8 @@ def test_a_scene_of_the_wrong_parts_is_refused_by_name(build, name):
 
 def test_a_sphere_just_wider_than_the_face_is_accepted():
     cs.Indenter(cs.Square(2.0), cs.Sphere(math.sqrt(2.0) * (1 + 1e-9)))
+    # a circle is measured on itself, not on its bounding box (which reaches sqrt(2) r): a sphere
+    # of radius 1.2 over the unit disc was refused
+    cs.Indenter(cs.Circle(1.0), cs.Sphere(1.0 * (1 + 1e-9)))
+    with pytest.raises(cs.SceneError, match="the face reaches r = 1.1 from the apex"):
+        cs.Indenter(cs.Circle(1.0, (0.1, 0.0)), cs.Sphere(1.05))
