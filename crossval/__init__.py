@@ -2,7 +2,7 @@
 
 from .compare import Check, Comparison, compare
 from .methods import METHODS, applicable_methods, get_method
-from .reference import Reference, assert_matches_reference, reference
+from .reference import Reference, UncheckedWarning, assert_matches_reference, reference
 from .regress import regress
 from .report import report
 from .study import study
@@ -19,6 +19,7 @@ __all__ = [
     "reference",
     "Reference",
     "assert_matches_reference",
+    "UncheckedWarning",
     "SUITE",
     "study",
     "report",

@@ -461,7 +461,7 @@ def report_cmd(quick, out_dir, workers, scheduler, no_cache):
 )
 def regress_cmd(update, workers):
     """Compare results with the reference file stored in the package (exit 1 on a mismatch)."""
-    from .regress import REFERENCE_FILE, regress
+    from .regress import CASES, REFERENCE_FILE, regress, regression_jobs
     from .runner import default_workers
 
     bad = regress(update=update, workers=workers or default_workers())
@@ -470,7 +470,11 @@ def regress_cmd(update, workers):
         return
     for m in bad:
         click.echo(f"MISMATCH {m.explain()}")
-    click.echo(f"{len(bad)} mismatches")
+    cases = len(regression_jobs())
+    click.echo(
+        f"{len(bad)} mismatches over {cases} cases (every suite scene through each method that applies, at "
+        f"{', '.join(f'{m} {r:g}' for m, r in CASES.items())}), against {REFERENCE_FILE}"
+    )
     if bad:
         sys.exit(1)
 
@@ -547,7 +551,9 @@ def study_cmd(file, method_names, resolutions, quantity, workers, as_json):
             )
         )
         return
-    click.echo(f"{quantity} of {sc.name}: error against {st.reference_name} ({st.reference:.8g})")
+    click.echo(f"{quantity} of {sc.name}: error against {st.reference_name}, reference value {st.reference:.8g}")
+    for m in sorted({r.method for r in st.rows}):
+        click.echo(f"  resolution of {m}: {METHODS[m].resolution(sc).label}")
     click.echo(f"{'method':<16}{'resolution':>11}{'value':>15}{'rel. error':>12}{'wall s':>9}")
     for r in st.rows:
         click.echo(f"{r.method:<16}{r.resolution:>11.4g}{r.value:>15.8g}{r.error:>12.3e}{r.wall_time_s:>9.2f}")

@@ -97,7 +97,9 @@ def for_scene(scene: cs.Scene) -> dict[str, FaceReference]:
 
     Applies to a flat punch of one of the table's faces (the same shape and size as the built-in
     scene of that name) on a homogeneous half-space, at any E* and w; with a finite adhesion range
-    the stiffness only (the forces and approaches are the zero-range limit's).
+    the stiffness only (the forces and approaches are the zero-range limit's), and so with
+    turning points or a pull limit that may stop the pull short of the force maximum (the
+    table's are those of one monotonic pull).
 
     Parameters
     ----------
@@ -129,13 +131,24 @@ def for_scene(scene: cs.Scene) -> dict[str, FaceReference]:
             f"reference table, {name}: {method} (crossval/references/faces.json, revision {doc.get('revision', '?')})"
         )
 
+    quantities = doc["faces"][name]["quantities"]
+    loading = scene.loading
+    monotonic = not loading.turning_points
+    if monotonic and loading.pull_limit is not None:
+        approach = (quantities.get("pulloff_approach") or {}).get("reference")
+        # the limit must lie beyond the force maximum's approach, its bar included
+        monotonic = approach is not None and loading.pull_limit < (
+            approach["value"] * scale["pulloff_approach"] * (1 + approach["relative_bar"])
+        )
     out = {}
-    for q, entry in doc["faces"][name]["quantities"].items():
+    for q, entry in quantities.items():
         ref = entry.get("reference")
         if q not in scale or not ref:
             continue
         if q != "stiffness" and scene.adhesion.range is not None:
             continue  # the table is the zero-range limit; the stiffness does not see the adhesion
+        if q != "stiffness" and not monotonic:
+            continue  # the pull may end, or turn, before the force maximum
         by_method = tuple(
             FaceReference(entry[m]["value"] * scale[q], entry[m]["relative_bar"], source(m), m)
             for m in ("bem_griffith", "bem_energy")

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 import numbers
 import os
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -17,7 +18,14 @@ from .compare import relative_difference
 from .methods import reference_method
 from .suite import load_scene_or_builtin
 
-__all__ = ["Reference", "reference", "assert_matches_reference"]
+__all__ = ["Reference", "reference", "assert_matches_reference", "UncheckedWarning"]
+
+
+class UncheckedWarning(UserWarning):
+    """A quantity read from a curve that the reference has no error bar on, so not compared.
+
+    :func:`assert_matches_reference` compares the others and names it, rather than let a
+    passing assertion suggest it was compared."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -177,6 +185,10 @@ def _from_curve(approach, force):
     if not np.any(F < 0):
         raise AssertionError(f"the curve has no tensile force (no F < 0): {_SIGNS}")
     i = int(np.argmax(-F))
+    if d[i] > 0:
+        # an adhesive punch is pulled (d < 0) to its largest tension; one at a pressed approach
+        # is the press's compression counted negative, tension positive
+        raise AssertionError(f"the most tensile force lies at a pressed approach d = {d[i]:.6g} > 0: {_SIGNS}")
     j = int(np.flatnonzero(d != d[0])[0]) if np.any(d != d[0]) else 1
     return float(-F[i]), float(d[i]), float((F[j] - F[0]) / (d[j] - d[0]))
 
@@ -188,8 +200,10 @@ def assert_matches_reference(
 
     A ``curve`` (approach, force) is reduced to its largest tensile force, the approach there,
     and the slope of its first segment; of these, quantities the reference has no bar for are
-    not compared.  A quantity given explicitly that the reference has no bar for is an error
-    (ValueError), not a pass.  Signs are this package's: F < 0 in tension, d < 0 when pulled.
+    not compared, and an :class:`UncheckedWarning` names them (pytest lists it in its warnings
+    summary).  A quantity given explicitly that the reference has no bar for is an error
+    (ValueError), not a pass, and so is a call that leaves nothing to compare.  Signs are this
+    package's: F < 0 in tension, d < 0 when pulled.
 
     Parameters
     ----------
@@ -212,10 +226,17 @@ def assert_matches_reference(
     AssertionError
         Naming every quantity that differs from the reference by more than the reference's bar
         on it plus ``rtol`` (value, reference, difference, tolerance); also for a negative
-        ``pulloff_force`` or a curve without tension (with a note on sign conventions).
+        ``pulloff_force``, a curve without tension or one whose largest tension lies at a
+        pressed approach d > 0 (with a note on sign conventions).
     ValueError
         If a quantity given explicitly has no bar in the reference or is not a finite number,
-        ``curve`` is malformed, or ``rtol`` is not a finite number >= 0.
+        none of the quantities given or read can be compared, ``curve`` is malformed, or
+        ``rtol`` is not a finite number >= 0.
+
+    Warns
+    -----
+    UncheckedWarning
+        Naming the quantities read from ``curve`` that the reference has no bar for.
     """
     __tracebackhide__ = True  # pytest shows the message, not this function's body
     # a NaN tolerance would make every comparison pass (nan > x is False), a negative one fail
@@ -236,7 +257,7 @@ def assert_matches_reference(
         pulloff_force = f if pulloff_force is None else pulloff_force
         pulloff_approach = d if pulloff_approach is None else pulloff_approach
         stiffness = k if stiffness is None else stiffness
-    bad = []
+    bad, unchecked, compared = [], [], 0
     for name, value in (
         ("pulloff_force", pulloff_force),
         ("pulloff_approach", pulloff_approach),
@@ -251,7 +272,9 @@ def assert_matches_reference(
                     f"scene {ref.scene.name or '(unnamed)'}: the reference ({ref.source}) has no "
                     f"error bar on {name}, so it cannot be checked against it"
                 )
+            unchecked.append(name)
             continue
+        compared += 1
         tol = own + rtol
         want = ref.value(name)
         diff = relative_difference(value, want)
@@ -262,3 +285,15 @@ def assert_matches_reference(
             )
     if bad:
         raise AssertionError(f"scene {ref.scene.name or '(unnamed)'}: " + "; ".join(bad))
+    if not compared:
+        raise ValueError(
+            f"scene {ref.scene.name or '(unnamed)'}: nothing to compare: the reference ({ref.source}) has no error bar "
+            f"on {', '.join(unchecked) or 'any quantity given'}"
+        )
+    if unchecked:
+        warnings.warn(
+            f"scene {ref.scene.name or '(unnamed)'}: {', '.join(unchecked)} read from the curve not compared: the "
+            f"reference ({ref.source}) has no error bar on {'it' if len(unchecked) == 1 else 'them'}",
+            UncheckedWarning,
+            stacklevel=2,
+        )

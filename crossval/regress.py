@@ -11,13 +11,14 @@ import os
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from .cache import package_version
 from .methods import METHODS, applicable_methods
 from .runner import Job, run_jobs
 from .suite import SUITE
 
-__all__ = ["REFERENCE_FILE", "CASES", "regress", "Mismatch"]
+__all__ = ["REFERENCE_FILE", "CASES", "MISSING", "STALE", "regress", "regression_jobs", "Mismatch"]
 
 REFERENCE_FILE = Path(__file__).with_name("references") / "suite.json"
 FORMAT = 1
@@ -47,7 +48,8 @@ class Mismatch:
         The method's name.
     quantity : str
         ``"pulloff_force"``, ``"pulloff_approach"`` or ``"stiffness"``; for a case the file does
-        not hold, ``"(missing from the reference file)"`` (with NaN values and a zero tolerance).
+        not hold, :data:`MISSING`, and for a case the file holds that is no longer computed (the
+        suite lost it), :data:`STALE` (both with NaN values and a zero tolerance).
     stored : float
         The value in the reference file.
     now : float
@@ -71,13 +73,34 @@ class Mismatch:
         str
             "scene/method: quantity = now, stored value (relative change, tolerance)".
         """
+        if self.quantity == MISSING:
+            return f"{self.scene}/{self.method}: computed, but not in the reference file (run with --update to add it)"
+        if self.quantity == STALE:
+            return (
+                f"{self.scene}/{self.method}: in the reference file, but no longer computed (the suite lost the "
+                "case; run with --update to drop it)"
+            )
         return (
             f"{self.scene}/{self.method}: {self.quantity} = {self.now:.10g}, stored {self.stored:.10g} "
             f"({self.now / self.stored - 1:+.2e}, tolerance {self.rtol:.0e})"
         )
 
 
-def _jobs():
+#: the quantity of a :class:`Mismatch` for a case the reference file does not hold
+MISSING = "(missing from the reference file)"
+#: the quantity of a :class:`Mismatch` for a stored case the suite no longer computes
+STALE = "(no longer computed)"
+
+
+def regression_jobs() -> list[Job]:
+    """The regression cases: every suite scene (:data:`crossval.SUITE`) through each method
+    that applies to it, at the method's regression resolution (:data:`CASES`).
+
+    Returns
+    -------
+    list of crossval.runner.Job
+        One job per case.
+    """
     return [Job(SUITE[s], m.name, CASES[m.name]) for s in SUITE for m in applicable_methods(SUITE[s])]
 
 
@@ -108,8 +131,8 @@ def regress(*, update: bool = False, path: Path | None = None, workers: int = 1,
     list of Mismatch
         Each quantity (pull-off force, approach at pull-off, stiffness) that differs from the
         stored value by more than the stored relative tolerance (a NaN on either side is a
-        mismatch), and each case the file does not hold; empty when everything matches, and
-        always empty with ``update``.
+        mismatch), each case the file does not hold and each it holds that is no longer
+        computed; empty when everything matches, and always empty with ``update``.
 
     Raises
     ------
@@ -119,9 +142,9 @@ def regress(*, update: bool = False, path: Path | None = None, workers: int = 1,
         If ``path`` does not exist (without ``update``).
     """
     path = REFERENCE_FILE if path is None else Path(path)
-    jobs = _jobs()
+    jobs = regression_jobs()
     results = run_jobs(jobs, workers=workers, callback=callback)
-    current = [
+    current: list[dict[str, Any]] = [
         {
             "scene": j.scene.name,
             "method": j.method,
@@ -144,13 +167,16 @@ def regress(*, update: bool = False, path: Path | None = None, workers: int = 1,
     if stored.get("format") != FORMAT:
         raise ValueError(f"{path}: reference format {stored.get('format')!r}, expected {FORMAT}")
     index = {(c["scene"], c["method"], c["resolution"]): c for c in stored["cases"]}
-    out = []
+    computed = {(c["scene"], c["method"], c["resolution"]) for c in current}
+    out = [
+        Mismatch(scene, method, STALE, float("nan"), float("nan"), 0)
+        for scene, method, resolution in index
+        if (scene, method, resolution) not in computed
+    ]
     for c in current:
         ref = index.get((c["scene"], c["method"], c["resolution"]))
         if ref is None:
-            out.append(
-                Mismatch(c["scene"], c["method"], "(missing from the reference file)", float("nan"), float("nan"), 0)
-            )
+            out.append(Mismatch(c["scene"], c["method"], MISSING, float("nan"), float("nan"), 0))
             continue
         for q in QUANTITIES:
             a, b = ref["values"][q], c["values"][q]

@@ -237,8 +237,9 @@ def _error_sentence(st) -> str:
         "bounded": f"{ref.own_method}'s finest run; its a-posteriori bound is the error bar",
         "extrapolated": (
             f"{ref.own_method}'s sequence, forces scaled to the nominal face area, extrapolated to "
-            "N -> infinity in 1/N; the error bar is the "
-            "spread of the leave-one-out extrapolations, and errors inside it are not resolved"
+            "N -> infinity in 1/N; the error bar (crossval.study.sequence_bar) adds the spread of the "
+            "leave-one-out extrapolations, the extrapolation's own correction and the finest grid's "
+            "envelope, and errors inside it are not resolved"
         ),
         "none": "nothing: there is no trustworthy reference",
     }[ref.kind]

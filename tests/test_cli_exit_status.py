@@ -77,10 +77,10 @@ def test_regress_writes_passes_and_exits_1_on_a_changed_value(tmp_path, monkeypa
     """``--update`` writes the store, a rerun matches it (exit 0), and a stored pull-off force
     0.1 % off is a mismatch (exit 1) named by case and quantity.  One case (the Griffith BEM on
     Kendall's circle) stands for the whole store."""
-    jobs = [j for j in regress_module._jobs() if j.scene.name == SUITE["kendall_circle"].name]
+    jobs = [j for j in regress_module.regression_jobs() if j.scene.name == SUITE["kendall_circle"].name]
     jobs = [j for j in jobs if j.method == "bem_griffith"]
     assert len(jobs) == 1
-    monkeypatch.setattr(regress_module, "_jobs", lambda: jobs)
+    monkeypatch.setattr(regress_module, "regression_jobs", lambda: jobs)
     store = tmp_path / "regression.json"
     monkeypatch.setattr(regress_module, "REFERENCE_FILE", store)
 

@@ -110,8 +110,11 @@ def test_assert_matches_reference_accepts_kendall_and_names_a_mismatch():
     crossval.assert_matches_reference(ref, curve=(d, F))
     with pytest.raises(AssertionError, match=r"pulloff_force: .* \+2\.000%"):
         crossval.assert_matches_reference(ref, pulloff_force=1.02 * FK)
-    # tension counted positive: a hint about the convention, not "-100 %"
-    for wrong in (dict(curve=(-d, -F)), dict(pulloff_force=-FK)):
+    # tension counted positive: a hint about the convention, not "-100 %"; also when the curve
+    # starts with a press, whose compression then looks like the largest tension
+    pressed = (np.array([0.1, 0.0, dK, dK]), np.array([0.1 * 2 * E, 0.0, -FK, 0.0]))
+    assert crossval.assert_matches_reference(ref, curve=pressed) is None
+    for wrong in (dict(curve=(-d, -F)), dict(pulloff_force=-FK), dict(curve=(pressed[0], -pressed[1]))):
         with pytest.raises(AssertionError, match=r"convention is F < 0 in tension") as info:
             crossval.assert_matches_reference(ref, **wrong)
         assert "-100" not in str(info.value)
@@ -120,6 +123,53 @@ def test_assert_matches_reference_accepts_kendall_and_names_a_mismatch():
         with pytest.raises(ValueError, match="finite number"):
             crossval.assert_matches_reference(ref, **({"pulloff_force": 1.02 * FK} | bad))
     crossval.assert_matches_reference(ref, pulloff_force=np.float32(FK), rtol=np.float64(0.0))
+
+
+def test_a_curve_whose_force_the_reference_cannot_check_warns_instead_of_passing_quietly():
+    """An ellipse has no closed form or table entry, and the Griffith reference carries no force
+    bar on it: a curve 50 % too strong used to pass on its slope alone.  Now the unchecked force
+    and approach are named in an UncheckedWarning, and a call left with nothing to compare is
+    an error."""
+    sc = cs.Scene(cs.Indenter(cs.Ellipse(1.5, 0.75)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0))
+    ref = crossval.reference(sc)
+    assert ref.error_bar("pulloff_force") is None and ref.error_bar("stiffness") is not None
+    K, F_A, d_A = ref.result.stiffness, ref.result.pulloff_force, ref.result.pulloff_approach
+    d = np.array([0.0, 0.5 * d_A, 1.3 * d_A, 1.3 * d_A])
+    F = np.array([0.0, 0.5 * K * d_A, -1.5 * F_A, 0.0])
+    with pytest.warns(crossval.UncheckedWarning, match="pulloff_force, pulloff_approach read from the curve"):
+        crossval.assert_matches_reference(ref, curve=(d, F), rtol=0.01)
+    # the slope is still held: a stiffness 5 % off fails
+    with pytest.raises(AssertionError, match="stiffness"):
+        crossval.assert_matches_reference(ref, curve=(d, 1.05 * F), rtol=0.01)
+    with pytest.raises(ValueError, match="no error bar on pulloff_force"):
+        crossval.assert_matches_reference(ref, pulloff_force=F_A)
+
+
+def test_the_table_gives_no_force_for_a_pull_that_may_stop_or_turn_before_it():
+    """The table's forces are those of one monotonic pull: a pull limit short of the force
+    maximum (the FEM reports the tension at the limit there) or turning points leave the
+    stiffness only, so a solver that honours the limit is not failed against the full pull."""
+    square = crossval.SUITE["square"]
+    full = crossval.reference(square)
+    d_A = full.value("pulloff_approach")
+    for loading in (cs.Loading(pull_limit=0.5 * d_A), cs.Loading(turning_points=(0.5 * d_A, 0.0 - 1e-3))):
+        ref = crossval.reference(dataclasses.replace(square, loading=loading))
+        assert ref.error_bar("pulloff_force") is None and ref.error_bar("stiffness") is not None
+    # a limit well past the maximum leaves the pull-off as it was
+    beyond = crossval.reference(dataclasses.replace(square, loading=cs.Loading(pull_limit=2.0 * d_A)))
+    assert beyond.value("pulloff_force") == full.value("pulloff_force")
+
+
+def test_the_plugin_also_loads_by_its_module_name(pytester):
+    """``-p crossval.pytest_plugin`` and ``pytest_plugins = [...]`` in a conftest, the usual
+    explicit ways, name the module the entry point registers: both load it once (under another
+    entry-point name pytest refused the second registration of the same module)."""
+    pytester.makeconftest('pytest_plugins = ["crossval.pytest_plugin"]')
+    pytester.makepyfile("""
+        def test_x(adhesion_reference):
+            assert adhesion_reference("incompressible_circle").source == "fem_reference"
+    """)
+    pytester.runpytest("-p", "crossval.pytest_plugin").assert_outcomes(passed=1)
 
 
 def test_plugin_failure_shows_the_message_not_the_library(pytester):

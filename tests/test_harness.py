@@ -213,7 +213,7 @@ def test_report_json_is_strict_even_with_non_finite_values(tmp_path, monkeypatch
 
 
 def test_regress_passes_and_explains_a_change(tmp_path):
-    from crossval.regress import REFERENCE_FILE, regress
+    from crossval.regress import MISSING, REFERENCE_FILE, STALE, regress
 
     assert regress() == []
     data = json.loads(REFERENCE_FILE.read_text())
@@ -222,6 +222,17 @@ def test_regress_passes_and_explains_a_change(tmp_path):
     p.write_text(json.dumps(data))
     (bad,) = regress(path=p)
     assert bad.quantity == "pulloff_force" and "-9.99e-04" in bad.explain()
+    # a case the file lacks, and one it holds that the suite no longer computes, are named as
+    # such (the first printed "= nan, stored nan"; the second passed unnoticed)
+    data = json.loads(REFERENCE_FILE.read_text())
+    dropped = data["cases"].pop(0)
+    data["cases"].append(dict(dropped, scene="a_retired_scene"))
+    p.write_text(json.dumps(data))
+    found = {m.quantity: m for m in regress(path=p)}
+    assert set(found) == {MISSING, STALE}
+    assert found[MISSING].scene == dropped["scene"] and "not in the reference file" in found[MISSING].explain()
+    assert found[STALE].scene == "a_retired_scene" and "no longer computed" in found[STALE].explain()
+    assert "nan" not in found[MISSING].explain() + found[STALE].explain()
 
 
 def test_full_report_includes_the_extreme_cases_table(tmp_path, monkeypatch):

@@ -12,6 +12,7 @@ import struct
 import subprocess
 import tempfile
 from html.parser import HTMLParser
+from pathlib import Path
 
 import matplotlib.colors
 import matplotlib.image
@@ -20,6 +21,8 @@ import pytest
 
 import crossval
 from crossval.study import convergence, extrapolate_first_order
+
+ROOT = Path(__file__).resolve().parents[1]
 
 SCENES = ["kendall_circle", "square"]
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
@@ -227,6 +230,39 @@ def test_first_order_extrapolation_recovers_the_limit_and_bounds_its_error():
     wiggly = 2.0 + 0.5 / N + 0.01 * np.array([1, -1, 1, -1, 1])
     lim, err = extrapolate_first_order(N, wiggly)
     assert abs(lim - 2.0) <= err and err > 0.005
+
+
+def _windows(N, values):
+    return [(N[i : i + 3], values[i : i + 3]) for i in range(len(N) - 2)]
+
+
+def test_a_griffith_sequence_bar_covers_the_limits_error_where_the_answer_is_known():
+    """``sequence_bar`` on the measured sweeps: Kendall's circle from 16 to 510 per radius
+    (docs/accuracy_griffith_circle.json, forces at the raster's area) in every window of three
+    grids, and the reference table's six faces over 32 ... 128 per radius (their stored
+    Griffith points) against the energy BEM's converged value within its bar.  The
+    leave-one-out spread alone fails on the circle (the staircase's zig-zag), the mutant."""
+    from crossval.study import sequence_bar
+
+    circle = json.loads((ROOT / "docs" / "accuracy_griffith_circle.json").read_text())
+    N = np.array([r[0] for r in circle["rows"]], float)
+    F = 1.0 + np.array([float(r[2]) for r in circle["rows"]])
+    spread_alone_fails = 0
+    for ns, vs in _windows(N, F):
+        lim, spread = extrapolate_first_order(ns, vs)
+        assert abs(lim - 1.0) <= sequence_bar(ns, vs, lim, spread), ns
+        spread_alone_fails += abs(lim - 1.0) > spread
+    assert spread_alone_fails >= 3
+    faces = json.loads((ROOT / "crossval" / "references" / "faces.json").read_text())["faces"]
+    for name, face in faces.items():
+        points = face["griffith"]["paper"]["points"]
+        N = np.array([p["N"] for p in points], float)
+        F = np.array([p["normalised"]["pulloff_force"] for p in points])
+        energy = face["quantities"]["pulloff_force"]["bem_energy"]
+        for ns, vs in _windows(N, F):
+            lim, spread = extrapolate_first_order(ns, vs)
+            gap = abs(lim - energy["value"])
+            assert gap <= sequence_bar(ns, vs, lim, spread) + energy["relative_bar"] * energy["value"], (name, ns)
 
 
 def test_without_a_closed_form_a_circle_is_measured_against_the_fem(monkeypatch):
