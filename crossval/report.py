@@ -178,9 +178,9 @@ AGREEMENT_CAPTION = (
     "is that method's own converged value, so the cell is its convergence error, not an agreement between "
     "methods. "
     "'calib.': a calibration residual, matching by construction; '< ref. error bar': the difference is "
-    "smaller than the reference's own error bar, so not resolved. Hatched cells have no value: "
-    + "; ".join(f"'{k}' = {v}" for k, v in plotting.BLANK_REASONS.items())
-    + "."
+    "smaller than the reference's own error bar, so not resolved; 'no bar': the run carries no error bar "
+    "on its force, so no check held it to the reference, whatever the difference. Hatched cells have no "
+    "value: " + "; ".join(f"'{k}' = {v}" for k, v in plotting.BLANK_REASONS.items()) + "."
 )
 
 
@@ -220,6 +220,7 @@ def _agreement_row(scene, st, fin, checks, methods):
                 + ["own extrap."] * own
                 + ["own table value"] * own_table
                 + ["< ref. error bar"] * (v <= ref.uncertainty)
+                + ["no bar"] * (r.error_bars.get("pulloff_force") is None)
             )
             note.append("\n".join(tags))
     return row, note
@@ -376,6 +377,12 @@ def report(
         if "pulloff_force" in th:
             source = reference_source(th, "pulloff_force").split(" (crossval")[0]
             axs[0].axhline(-th["pulloff_force"], color="grey", lw=0.6, ls=":", label=f"-F_A: {source}")
+        # horizontal lines do not widen the axes: a limit below every curve sat on the frame
+        levels = [line.get_ydata()[0] for line in axs[0].get_lines() if line.get_linestyle() in ("--", ":")]
+        if levels:
+            low, high = axs[0].get_ylim()
+            pad = 0.05 * (high - low)
+            axs[0].set_ylim(min(low, min(levels) - pad), max(high, max(levels) + pad))
         axs[0].legend(fontsize=7)
         axs[0].set_title(f"{s} (tension F < 0)")
         # the last stable contact of the first method that recorded one (a grid method's)

@@ -125,6 +125,13 @@ def test_blank_cells_of_the_agreement_map_are_explained(rendered):
     # its convergence error is not read as a disagreement between methods
     assert "own table value" in notes[list(METHODS).index("bem_energy")]
     assert "own table value" not in notes[list(METHODS).index("bem_griffith")]
+    # a run without a force bar was held to nothing: its cell says so, whatever its colour
+    for m, r in fin.items():
+        j = list(METHODS).index(m)
+        if not math.isnan(row[j]):
+            assert ("no bar" in notes[j]) == (r.error_bars.get("pulloff_force") is None), (m, notes[j])
+    assert "no bar" in notes[list(METHODS).index("bem_energy")]  # its quick sequence claims no force bar
+    assert "'no bar'" in page
 
 
 @pytest.mark.skipif(shutil.which("chromium") is None, reason="chromium is not installed")
