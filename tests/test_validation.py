@@ -569,7 +569,7 @@ _KENDALL = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.A
             "material",
         ),
         # the zero-range sequence's ranges (~ sqrt(l_c w / E*)) below single precision: the
-        # displacements underflowed and the minimiser ran on without end
+        # displacements underflowed and the minimiser made no progress (still running after 100 s)
         (
             lambda: be.solve(cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1e-90))),
             "material",
