@@ -245,11 +245,10 @@ def build_problem(scene: Scene, settings: GriffithSettings) -> Problem:
         )
     scale = float(np.abs(kernel).max())
     largest_inverse = None if inverse is None else float(inverse.max())
-    # C_00 ~ h / E*: lengths and moduli whose ratio leaves floating point (the single-precision
-    # preconditioner's range, for the inverse symbol ~ E* / h) cannot be solved in these units
-    if not (0 < scale < math.inf and 0 <= sigma_c < math.inf) or (
-        largest_inverse is not None and not 0 < largest_inverse < math.inf
-    ):
+    # C_00 ~ h / E*: lengths and moduli whose ratio leaves floating point cannot be solved in
+    # these units (the single-precision inverse symbol ~ E* / h is checked where it is made,
+    # ``inverse_lattice_symbol``)
+    if not (0 < scale < math.inf and 0 <= sigma_c < math.inf):
         raise SceneError(
             "material",
             f"the influence coefficients ({scale:.3g} per unit pressure at element side {h:.3g}) or the critical "
