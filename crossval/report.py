@@ -363,11 +363,13 @@ def report(
             # the same-grid runs without adhesion (keys beyond the methods) have no pull
             if r.curve is not None and m in METHODS:
                 plotting.plot_curve(r, axs[0], label=_curve_label(m, r), color=plotting.METHOD_COLOURS.get(m))
+        levels = []  # the horizontal lines' heights: they do not widen the axes by themselves
         for m, r in finest[s].items():
             # the curve is the finest range's; its zero-range F_A is the table's value, so drawn too
             if m in METHODS and isinstance(r.info, dict) and "zero_range" in r.info:
+                levels.append(-r.pulloff_force)
                 axs[0].axhline(
-                    -r.pulloff_force,
+                    levels[-1],
                     color=plotting.METHOD_COLOURS.get(m),
                     lw=0.8,
                     ls="--",
@@ -376,10 +378,9 @@ def report(
         th = reference_values(SUITE[s])
         if "pulloff_force" in th:
             source = reference_source(th, "pulloff_force").split(" (crossval")[0]
-            axs[0].axhline(-th["pulloff_force"], color="grey", lw=0.6, ls=":", label=f"-F_A: {source}")
-        # horizontal lines do not widen the axes: a limit below every curve sat on the frame
-        levels = [line.get_ydata()[0] for line in axs[0].get_lines() if line.get_linestyle() in ("--", ":")]
-        if levels:
+            levels.append(-th["pulloff_force"])
+            axs[0].axhline(levels[-1], color="grey", lw=0.6, ls=":", label=f"-F_A: {source}")
+        if levels:  # a limit below every curve sat on the frame
             low, high = axs[0].get_ylim()
             pad = 0.05 * (high - low)
             axs[0].set_ylim(min(low, min(levels) - pad), max(high, max(levels) + pad))
