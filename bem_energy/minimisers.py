@@ -88,8 +88,8 @@ def _length_scale(prob: EnergyProblem, d: float, adhesive: bool) -> float:
 #: about 20 elements per l_c as they were; it acts on longer zones (a finite range with l_c
 #: above about 0.6 a on the default 32 per radius; long ranges, stiff bodies, weak adhesion),
 #: where the element unit outgrows the adhesive stress until a minimum accepted at ``gtol``
-#: left the adhesive tractions unresolved (the pull-off force then came out at a fraction of
-#: its value, or zero).  There it costs iterations; L-BFGS-B, whose objective (the adhesive
+#: leaves the adhesive tractions unresolved (the pull-off force then comes out at a fraction
+#: of its value, or zero).  There it costs iterations; L-BFGS-B, whose objective (the adhesive
 #: energy, about -w A, plus changes of relative size a / l_c) loses those changes to round-off,
 #: can stall short of the tolerance at l_c >> a and then says so (not converged); the default
 #: projected CG sums its steps' energy changes cell by cell and converges

@@ -694,8 +694,8 @@ def build_problem(
     if potential is not None:
         # the displacements go through single-precision transforms, and the gaps the potential
         # acts over are of the order of its range: a range below float32's normal numbers
-        # underflowed them to zero, and the minimiser then made no progress (a run was still
-        # going after 100 s); a thousandth of the range keeps its digits
+        # underflows them to zero, and the minimiser then makes no progress; a thousandth of
+        # the range keeps its digits
         single = np.finfo(np.float32)
         low, high = float(single.tiny) * 1e3, float(single.max) * 1e-3
         if not low <= potential.range <= high:

@@ -127,7 +127,7 @@ def test_assert_matches_reference_accepts_kendall_and_names_a_mismatch():
 
 def test_a_curve_whose_force_the_reference_cannot_check_warns_instead_of_passing_quietly():
     """An ellipse has no closed form or table entry, and the Griffith reference carries no force
-    bar on it: a curve 50 % too strong used to pass on its slope alone.  Now the unchecked force
+    bar on it: a curve 50 % too strong must not pass on its slope alone.  The unchecked force
     and approach are named in an UncheckedWarning, and a call left with nothing to compare is
     an error."""
     sc = cs.Scene(cs.Indenter(cs.Ellipse(1.5, 0.75)), cs.Homogeneous(1.0, 0.3), cs.Adhesion(1.0))
@@ -163,7 +163,7 @@ def test_the_table_gives_no_force_for_a_pull_that_may_stop_or_turn_before_it():
 def test_the_plugin_also_loads_by_its_module_name(pytester):
     """``-p crossval.pytest_plugin`` and ``pytest_plugins = [...]`` in a conftest, the usual
     explicit ways, name the module the entry point registers: both load it once (under another
-    entry-point name pytest refused the second registration of the same module)."""
+    entry-point name pytest refuses the second registration of the same module)."""
     pytester.makeconftest('pytest_plugins = ["crossval.pytest_plugin"]')
     pytester.makepyfile("""
         def test_x(adhesion_reference):

@@ -124,7 +124,7 @@ STIFF_CASES = {
 def test_a_very_long_process_zone_still_resolves_the_adhesive_stress(case):
     """l_c from 1e4 a to 1e6 a with the default settings: the element's pressure unit (rho /
     C_00) is then 1e5 ... 1e7 times the adhesive stress w / rho, and a minimum accepted in it
-    took the first trial for converged (F_A 12 % low at rho = 100, zero at 1000).  With the
+    takes the first trial for converged (the mutant below: F_A zero at rho = 1000).  With the
     unit capped at ``ADHESIVE_UNIT`` w / rho: F_A / (A sigma0) lies between 1 - c eps less the
     snap tolerance's share (the maximum is located to snap_tolerance times the pull's scale)
     and 1 (no cell pulls harder than sigma0) plus the minimisers' tolerance.  The default
@@ -184,7 +184,7 @@ def test_resolution_too_coarse_for_the_process_zone_is_not_converged():
 def test_a_zero_range_sequence_too_coarse_advises_its_own_resolution():
     """The zero-range sequence's --resolution counts elements per process zone, not per
     radius: its note names that measure and the potential's fewest (one per l_c), and that
-    resolution resolves every range (the advice used to be elements per radius, 25x finer)."""
+    resolution resolves every range (in elements per radius it would be 25x finer)."""
     sc = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
     coarse = be.solve_with_resolution(sc, 0.5)
     notes = [m for m in coarse.messages if "trapped by the mesh" in m]

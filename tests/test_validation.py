@@ -524,8 +524,8 @@ _KENDALL = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(0.75, 0.5), cs.A
         (lambda: cs.Loading(turning_points={-1.0: 2}), "loading.turning_points"),
         (lambda: cs.Outputs(snapshots={-0.5}), "outputs.snapshots"),
         # a scene's own scales outside what double precision carries through the solvers: each
-        # value at fault by name (a subnormal modulus had crashed the FEM as "a solver bug"), a
-        # combination as the material
+        # value at fault by name (a subnormal modulus would reach the FEM, which calls a
+        # non-finite result a solver bug), a combination as the material
         (
             lambda: cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.Homogeneous(1e-320, 0.3), cs.Adhesion(1.0)),
             "material.youngs_modulus",
@@ -609,8 +609,8 @@ def test_a_scene_of_the_wrong_parts_is_refused_by_name(build, name):
 
 def test_a_sphere_just_wider_than_the_face_is_accepted():
     cs.Indenter(cs.Square(2.0), cs.Sphere(math.sqrt(2.0) * (1 + 1e-9)))
-    # a circle is measured on itself, not on its bounding box (which reaches sqrt(2) r): a sphere
-    # of radius 1.2 over the unit disc was refused
+    # a circle is measured on itself, not on its bounding box (which reaches sqrt(2) r), so a
+    # sphere just wider than the disc is accepted
     cs.Indenter(cs.Circle(1.0), cs.Sphere(1.0 * (1 + 1e-9)))
     with pytest.raises(cs.SceneError, match="the face reaches r = 1.1 from the apex"):
         cs.Indenter(cs.Circle(1.0, (0.1, 0.0)), cs.Sphere(1.05))
