@@ -423,7 +423,7 @@ def pull(
     outcome = PullOutcome(final=pressed, reached_user_limit=reached_user_limit)
     max_events = 20 * problem.face_elements + 1000
     solution, approach = pressed, pressed_approach
-    rule = detachment_rule(problem, scene, settings)
+    rule = detachment_rule(problem, scene, settings, counters)
     for target in targets:
         while solution.attached and approach != target:
             upcoming = _next_approach(problem, solution, approach, target, settings, rule)

@@ -35,7 +35,7 @@ class _GriffithInfoBase(TypedDict):
     cascades_cut: int  # cascades ended early by the Eq. 14 certainty bound
     windowed_solves: int  # contact-set solves on a smaller window of the grid
     decided_solves: int  # solves of a cascade's passing sets stopped once the next pass was certain
-    criterion: str  # the detachment rule: "paper" (Eq. 22) or "stress_intensity"
+    criterion: str  # the detachment rule: "paper" (Eq. 22), "stress_intensity" or "energy_release"
 
 
 class GriffithInfo(_GriffithInfoBase, total=False):
@@ -65,7 +65,7 @@ class GriffithInfo(_GriffithInfoBase, total=False):
         Solves of a cascade's passing contact sets, stopped as soon as a bound on their error
         showed which elements leave next (``GriffithSettings.decide_early``).
     criterion : str
-        The detachment rule: ``"paper"`` (Eq. 22) or ``"stress_intensity"``.
+        The detachment rule: ``"paper"`` (Eq. 22), ``"stress_intensity"`` or ``"energy_release"``.
     graded_criterion : str
         ``"calibrated"`` or ``"eq42"``; present for graded bodies with adhesion and k != 0 only,
         like the two keys below.

@@ -120,8 +120,14 @@ class GriffithSettings:
         curved and rotated edges, so it converges on smooth fronts (Kendall's circle), but
         on faces with corners its pull-off comes out low (square and triangle: 1-2 % below
         the energy BEM), because its fit over-estimates K while a detached corner is smaller
-        than the fitting window and a detached cell never re-attaches.  Flat punches on
-        homogeneous, non-periodic half-spaces only.
+        than the fitting window and a detached cell never re-attaches.  ``"energy_release"``:
+        Eq. 22's ranking of the front cells, with the threshold of each stretch of front set
+        so that its most stressed cell leaves when the stretch's energy release rate, measured
+        by a central difference of the solver's own stiffness, reaches w
+        (``bem_griffith.energy_release``); no constant calibrated on a straight edge, so no
+        staircase bias, and no fitting window, so it holds at corners; several times the
+        paper rule's solves.  Both alternatives: flat punches on homogeneous, non-periodic
+        half-spaces only.
 
     Raises
     ------
@@ -130,7 +136,7 @@ class GriffithSettings:
         ``settings.grid`` when ``grid`` is not a :class:`~contact_scene.Grid`;
         ``settings.step`` for the fixed-step driver without a step, or for a step given to the
         event driver; ``settings.criterion``
-        for ``"stress_intensity"`` on a periodic grid.
+        for ``"stress_intensity"`` or ``"energy_release"`` on a periodic grid.
     """
 
     grid: Grid = field(default_factory=lambda: Grid(elements_per_radius=32))
@@ -148,7 +154,7 @@ class GriffithSettings:
     decide_early: bool = flag(True)
     local_warm_start: bool = flag(True)
     graded_criterion: str = choice("calibrated", tuple(CRITERIA))
-    criterion: str = choice("paper", ("paper", "stress_intensity"))
+    criterion: str = choice("paper", ("paper", "stress_intensity", "energy_release"))
 
     def __post_init__(self):
         # a type, not a range
@@ -165,9 +171,14 @@ class GriffithSettings:
                 "only the fixed-step driver takes a step (driver = 'fixed_step'); the event driver finds "
                 "every event exactly and takes none",
             )
-        if self.criterion == "stress_intensity" and self.grid.periodic:
+        if self.criterion in ("stress_intensity", "energy_release") and self.grid.periodic:
+            why = (
+                "its front windows do not wrap"
+                if self.criterion == "stress_intensity"
+                else "its pinned fronts need the ring of cells around the face"
+            )
             raise SceneError(
                 "settings.criterion",
-                "'stress_intensity' does not support a periodic grid (its front "
-                "windows do not wrap); use criterion = 'paper' or periodic = false",
+                f"{self.criterion!r} does not support a periodic grid ({why}); "
+                "use criterion = 'paper' or periodic = false",
             )

@@ -408,33 +408,48 @@ def free_front_release(problem, contact: np.ndarray, settings, counters=None, so
     )
 
 
-def check_supported(scene: Scene, periodic: bool) -> None:
-    """Refuse what the stress-intensity criterion cannot do, naming the setting."""
+def check_supported(scene: Scene, periodic: bool, criterion: str = "stress_intensity") -> None:
+    """Refuse what the stress-intensity and energy-release criteria cannot do, naming the setting."""
     if not isinstance(scene.material, Homogeneous):
+        why = (
+            "a graded one needs the graded G-K relation and its (k - 1)/2 edge singularity, not K^2 / (2 E*)"
+            if criterion == "stress_intensity"
+            else "on graded bodies it is not yet checked"
+        )
         raise SceneError(
-            "settings.criterion",
-            "'stress_intensity' needs a homogeneous body: a graded one needs the graded G-K relation "
-            "and its (k - 1)/2 edge singularity, not K^2 / (2 E*); use criterion = 'paper'",
+            "settings.criterion", f"{criterion!r} needs a homogeneous body: {why}; use criterion = 'paper'"
         )
     if not scene.indenter.profile.is_flat:
+        why = (
+            "on a curved profile K is not linear in the approach, so each front cell would need its own root-find"
+            if criterion == "stress_intensity"
+            else "on a curved profile the released energy is not proportional to d^2"
+        )
         raise SceneError(
-            "settings.criterion",
-            "'stress_intensity' supports flat punches only (on a curved profile K is not linear in the "
-            "approach, so each front cell would need its own root-find); use criterion = 'paper'",
+            "settings.criterion", f"{criterion!r} supports flat punches only ({why}); use criterion = 'paper'"
         )
     if periodic:
+        why = (
+            "its front windows do not wrap"
+            if criterion == "stress_intensity"
+            else "the layer ahead of a pinned edge needs the ring of cells around the face"
+        )
         raise SceneError(
-            "settings.criterion",
-            "'stress_intensity' does not support a periodic grid (its front windows do not wrap); "
-            "use criterion = 'paper'",
+            "settings.criterion", f"{criterion!r} does not support a periodic grid ({why}); use criterion = 'paper'"
         )
 
 
-def detachment_rule(problem, scene: Scene, settings) -> DetachmentRule:
-    """The rule ``settings.criterion`` names, for ``problem``."""
+def detachment_rule(problem, scene: Scene, settings, counters=None) -> DetachmentRule:
+    """The rule ``settings.criterion`` names, for ``problem`` (``counters`` counts the solves of
+    the energy-release rule)."""
     if settings.criterion == "paper":
         return PaperRule(problem.critical_stress)
-    check_supported(scene, settings.grid.periodic)
+    check_supported(scene, settings.grid.periodic, settings.criterion)
+    if settings.criterion == "energy_release":
+        from .counters import WorkCounters
+        from .energy_release import EnergyReleaseRule
+
+        return EnergyReleaseRule(problem, settings, counters if counters is not None else WorkCounters())
     elements_per_radius = math.sqrt(problem.face_elements / math.pi)
     return StressIntensityRule(
         critical_stress=problem.critical_stress,

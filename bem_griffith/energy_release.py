@@ -1,0 +1,225 @@
+"""The energy-release detachment rule: Eq. 22's local ranking of the front cells, with its level
+set per stretch of front by the solver's own energy release rate.
+
+The paper's rule (Eq. 22) lets a cell go when its tension reaches sigma_c, a constant exact for
+a straight edge of the grid.  On a staircase edge the most stressed cells meet it at a slightly
+different load, an O(1) bias of a few tenths of a per cent in the pull-off force that does not
+shrink with the grid (theory sheet, section 6).  Griffith's condition itself is global in the
+discrete model and needs no constant: at fixed approach d a flat punch stores U = d^2 S / 2
+(S = sum(x1) Delta^2, the stiffness of the contact set), so the energy release rate of a stretch
+of front is G = (d^2 / 2) dS / dA, and the stretch advances when G reaches w.
+
+``"energy_release"`` measures dS / dA of each stretch by a central difference of the solver's
+own stiffness: the stretch's front cells peeled and the layer of cells ahead of it added, each
+set re-solved from the current solution (``stress_intensity.free_front_release`` does the same
+for a whole free front).  The two one-sided differences carry equal and opposite second-order
+terms, which cancel.  On Kendall's circle the whole rim's central release meets G = d^2 E* /
+(2 pi a) within 4e-4 at 32 and 4e-5 at 64 elements per radius, while each one-sided
+difference is off by about 0.7 % at 64 (tests/test_energy_release_rule.py).  Since G is
+proportional to d^2 on a fixed set, the approach at which the stretch reaches w is exact,
+d_R = -sqrt(w / (G / d^2)), and the rule sets the stretch's own threshold to
+sigma_R = |d_R| max x1 over its cells: its most stressed cell leaves exactly when the stretch's
+release reaches w, the others by Eq. 22's ranking of their tensions within it.
+
+Stretches:
+
+* free fronts: the contact cells with a 4-neighbour on the face outside the contact set,
+  grouped by 8-connectivity (a detached corner's front, a notch); the layer ahead is the
+  detached face cells touching them.  Their threshold is sigma_R.
+* pinned fronts: the remaining contact cells with a 4-neighbour off the face (the face's own
+  edge) and the free pieces too small to measure, grouped likewise; the layer ahead lies off the
+  face (the raster keeps one empty ring of cells around the face, so it exists), a virtual
+  advance that measures G at the edge.  A pinned stretch's mean G does not say where along it G
+  is largest (at a square's corner it is singular), so its threshold is
+  min(NUCLEATION_FACTOR sigma_c, sigma_R): the release lets the stretch go when its mean G
+  reaches w, and Eq. 22 nucleates a detachment where the tension runs far above sigma_c (a
+  corner) before that.  The factor (1.05) lies above Eq. 22's staircase bias, so that the most
+  stressed cells of a staircase rim do not leave early by it: with factor 1 they did on Kendall's
+  circle at 128 elements per radius (its error went from -0.13 % at 96 back to -0.18 %); with
+  1.05 the circle's error falls at every step over 48 ... 128 and the square's pull-off is
+  unchanged at 48 and 64 per radius.
+
+A stretch of fewer than ``MIN_STRETCH_CELLS`` cells (a one-cell notch, the last cells of a
+cascade) has no front for a difference to measure; its cells follow Eq. 22.
+
+What it leaves: the stiffness S itself carries the raster's O(1/N) error, which passes into the
+force smoothly (it does not zig-zag with the staircase), so the pull-off converges like 1/N and
+can be extrapolated.  Each stretch costs two contact solves per contact solution the driver asks
+about (``WorkCounters`` counts them with the others): several times the paper rule's solves.
+Flat punches on homogeneous, non-periodic half-spaces only: on a curved face the released energy
+has the profile's terms and is not proportional to d^2, and graded bodies are not yet checked.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy import ndimage
+
+from .contact_set import solve_contact_set
+from .counters import WorkCounters
+from .stress_intensity import PaperRule, pressure_roundoff
+
+__all__ = ["MIN_STRETCH_CELLS", "EnergyReleaseRule", "StretchRelease", "front_stretches", "stretch_release"]
+
+#: fewest cells of a stretch of front whose release the rule measures (smaller ones follow Eq. 22)
+MIN_STRETCH_CELLS = 8
+
+#: a measured pinned stretch lets a cell go by Eq. 22 only once its tension exceeds this multiple
+#: of sigma_c (module doc)
+NUCLEATION_FACTOR = 1.05
+
+_FOUR = ndimage.generate_binary_structure(2, 1)
+_EIGHT = np.ones((3, 3), bool)
+
+
+def front_stretches(
+    face: np.ndarray, contact: np.ndarray, min_cells: int = MIN_STRETCH_CELLS
+) -> list[tuple[np.ndarray, np.ndarray, bool]]:
+    """The stretches of front of ``contact`` on ``face`` (module doc): a list of (cells, ahead,
+    pinned), boolean grids of the stretch's contact cells and of the layer ahead of it.
+
+    Parameters
+    ----------
+    face : numpy.ndarray
+        Boolean grid of the face's cells.
+    contact : numpy.ndarray
+        Boolean grid of the contact set (a subset of ``face``).
+    min_cells : int, optional
+        Fewest cells of a free stretch; smaller free pieces join the pinned stretch they touch.
+
+    Returns
+    -------
+    list of tuple
+        (cells, ahead, pinned) per stretch: free stretches first, then pinned ones.
+    """
+    outside = ~contact
+    detached = face & outside
+    free = contact & ndimage.binary_dilation(detached, _FOUR)
+    front = contact & ndimage.binary_dilation(outside, _FOUR)
+    out = []
+    labels, count = ndimage.label(free, _EIGHT)
+    sizes = ndimage.sum_labels(free, labels, np.arange(1, count + 1))
+    for index in np.flatnonzero(sizes >= min_cells):
+        cells = labels == index + 1
+        front &= ~cells
+        out.append((cells, detached & ndimage.binary_dilation(cells, _FOUR), False))
+    labels, count = ndimage.label(front, _EIGHT)
+    for label in range(1, count + 1):
+        cells = labels == label
+        out.append((cells, outside & ndimage.binary_dilation(cells, _FOUR), True))
+    return out
+
+
+class StretchRelease:
+    """One stretch's measured release: ``cells`` (boolean grid), ``pinned``, and G / d^2,
+    ``release_per_approach_squared`` (nan when the difference was not positive)."""
+
+    __slots__ = ("cells", "pinned", "release_per_approach_squared")
+
+    def __init__(self, cells: np.ndarray, pinned: bool, release_per_approach_squared: float):
+        self.cells = cells
+        self.pinned = pinned
+        self.release_per_approach_squared = release_per_approach_squared
+
+
+def stretch_release(problem, solution, cells, ahead, settings, counters: WorkCounters) -> float:
+    """G / d^2 of one stretch of the front of ``solution``'s contact set: half the stiffness
+    difference between the set with ``ahead`` added and with ``cells`` peeled, over the area of
+    both layers (module doc).  Two contact solves, warm-started from ``solution``.
+
+    Parameters
+    ----------
+    problem : bem_griffith.problem.Problem
+        The discretised scene (flat face).
+    solution : bem_griffith.contact_set.ContactSolution
+        The solved contact set.
+    cells, ahead : numpy.ndarray
+        Boolean grids of the stretch's contact cells and of the cells ahead of it.
+    settings : bem_griffith.GriffithSettings
+        The solver settings (CG tolerance, windows).
+    counters : bem_griffith.counters.WorkCounters
+        Counts the two solves.
+
+    Returns
+    -------
+    float
+        G / d^2 (nan when the difference is not positive, e.g. a solve that did not converge).
+    """
+    contact = solution.contact
+    peeled = solve_contact_set(problem, contact & ~cells, settings, solution, counters)
+    added = solve_contact_set(problem, contact | ahead, settings, solution, counters)
+    stiffness = [float(x.pressure_per_approach.sum()) for x in (peeled, solution, added)]
+    n_peel, n_add = int(cells.sum()), int(ahead.sum())
+    # dS/dA at the current set from the parabola through the three sets (the central difference
+    # when both layers hold as many cells); U = d^2 S / 2, so G / d^2 = (dS/dA) / 2
+    behind = (stiffness[1] - stiffness[0]) / n_peel
+    beyond = (stiffness[2] - stiffness[1]) / n_add
+    release = 0.5 * (n_add * behind + n_peel * beyond) / (n_peel + n_add)
+    return release if release > 0 and peeled.converged and added.converged else math.nan
+
+
+class EnergyReleaseRule:
+    """Eq. 22's ranking with each stretch's threshold set by its energy release (module doc).
+    Caches the thresholds of the last contact solution it saw (the driver asks for the next
+    event and then cascades on the same solution)."""
+
+    def __init__(self, problem, settings, counters: WorkCounters, min_cells: int = MIN_STRETCH_CELLS):
+        self.problem = problem
+        self.settings = settings
+        self.counters = counters
+        self.min_cells = min_cells
+        self.nucleation_factor = NUCLEATION_FACTOR
+        self.paper = PaperRule(problem.critical_stress)
+        self.work_of_adhesion = problem.work_of_adhesion
+        self._last: tuple[object, np.ndarray] | None = None
+        #: contact solutions whose stretches were measured, and stretches measured in all
+        self.evaluations = 0
+        self.measured = 0
+        #: the stretches of the last solution measured (for diagnostics)
+        self.last_stretches: list[StretchRelease] = []
+
+    def thresholds(self, solution) -> np.ndarray:
+        """sigma per contact cell (row-major order of the set): sigma_R on measured free
+        stretches, min(sigma_c, sigma_R) on measured pinned ones, sigma_c elsewhere."""
+        if self._last is not None and self._last[0] is solution:
+            return self._last[1]
+        contact = solution.contact
+        x1 = np.zeros(contact.shape)
+        x1[contact] = solution.pressure_per_approach
+        sigma = np.full(contact.shape, self.paper.critical_stress)
+        size = int(contact.sum())
+        stretches = []
+        if self.work_of_adhesion > 0:
+            for cells, ahead, pinned in front_stretches(self.problem.face, contact, self.min_cells):
+                count = int(cells.sum())
+                if count < self.min_cells or count == size or not ahead.any():
+                    continue
+                release = stretch_release(self.problem, solution, cells, ahead, self.settings, self.counters)
+                stretches.append(StretchRelease(cells, pinned, release))
+                if not release > 0:
+                    continue  # Eq. 22 there
+                critical = math.sqrt(self.work_of_adhesion / release) * float(x1[cells].max())
+                sigma[cells] = (
+                    min(self.nucleation_factor * self.paper.critical_stress, critical) if pinned else critical
+                )
+        self.evaluations += 1
+        self.measured += len(stretches)
+        self.last_stretches = stretches
+        out = sigma[contact]
+        self._last = (solution, out)
+        return out
+
+    def critical_approaches(self, solution) -> np.ndarray:
+        per_approach = solution.pressure_per_approach
+        out = np.full(per_approach.shape, np.nan)
+        loaded = per_approach > 0
+        # tension -d x1 = sigma  <=>  d = -sigma / x1
+        out[loaded] = -self.thresholds(solution)[loaded] / per_approach[loaded]
+        return out
+
+    def detaching(self, solution, approach: float, tie_tolerance: float) -> np.ndarray:
+        tension = -approach * solution.pressure_per_approach
+        roundoff = pressure_roundoff(approach, solution.pressure_per_approach)
+        return tension >= self.thresholds(solution) * (1 - tie_tolerance) - roundoff
