@@ -55,8 +55,11 @@ What it leaves: the stiffness S itself carries the raster's O(1/N) error, which 
 force smoothly (it does not zig-zag with the staircase), so the pull-off converges like 1/N and
 can be extrapolated.  Each stretch costs two contact solves per contact solution the driver asks
 about (``WorkCounters`` counts them with the others): several times the paper rule's solves.
-Flat punches on homogeneous, non-periodic half-spaces only: on a curved face the released energy
-has the profile's terms and is not proportional to d^2, and graded bodies are not yet checked.
+The release is the stored energy's own derivative, so it needs no G-K relation: graded bodies
+take it as they are (Eq. 42's sigma_c, calibrated or not, only nucleates).  On the graded
+circle (k = -0.5, 0.5) the pull-off follows the discrete stiffness as on the homogeneous one
+(tests/test_energy_release_rule.py).  Flat, non-periodic faces only: on a curved face the
+released energy has the profile's terms and is not proportional to d^2.
 """
 
 from __future__ import annotations

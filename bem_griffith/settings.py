@@ -126,8 +126,8 @@ class GriffithSettings:
         by a central difference of the solver's own stiffness, reaches w
         (``bem_griffith.energy_release``); no constant calibrated on a straight edge, so no
         staircase bias, and no fitting window, so it holds at corners; several times the
-        paper rule's solves.  Both alternatives: flat punches on homogeneous, non-periodic
-        half-spaces only.
+        paper rule's solves; homogeneous and graded bodies.  Both alternatives: flat punches on
+        non-periodic half-spaces only, ``"stress_intensity"`` on homogeneous ones.
 
     Raises
     ------
