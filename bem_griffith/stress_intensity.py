@@ -408,7 +408,9 @@ def free_front_release(problem, contact: np.ndarray, settings, counters=None, so
     )
 
 
-def check_supported(scene: Scene, periodic: bool, criterion: str = "stress_intensity") -> None:
+def check_supported(
+    scene: Scene, periodic: bool, criterion: str = "stress_intensity", graded_criterion: str = "calibrated"
+) -> None:
     """Refuse what the stress-intensity and energy-release criteria cannot do, naming the setting
     (the energy release needs no G-K relation, so it takes graded bodies)."""
     if criterion == "stress_intensity" and not isinstance(scene.material, Homogeneous):
@@ -416,6 +418,17 @@ def check_supported(scene: Scene, periodic: bool, criterion: str = "stress_inten
             "settings.criterion",
             "'stress_intensity' needs a homogeneous body: a graded one needs the graded G-K relation and its "
             "(k - 1)/2 edge singularity, not K^2 / (2 E*); use criterion = 'paper' or 'energy_release'",
+        )
+    if (
+        criterion == "energy_release"
+        and not isinstance(scene.material, Homogeneous)
+        and graded_criterion != "calibrated"
+    ):
+        raise SceneError(
+            "settings.graded_criterion",
+            "'energy_release' nucleates on pinned edges with the graded sigma_c, which must be the calibrated "
+            "one (Eq. 42's own constant is 22 % low at k = -0.5 and would decide the pull-off); use "
+            "graded_criterion = 'calibrated'",
         )
     if not scene.indenter.profile.is_flat:
         why = (
@@ -442,7 +455,7 @@ def detachment_rule(problem, scene: Scene, settings, counters=None) -> Detachmen
     the energy-release rule)."""
     if settings.criterion == "paper":
         return PaperRule(problem.critical_stress)
-    check_supported(scene, settings.grid.periodic, settings.criterion)
+    check_supported(scene, settings.grid.periodic, settings.criterion, settings.graded_criterion)
     if settings.criterion == "energy_release":
         from .counters import WorkCounters
         from .energy_release import EnergyReleaseRule

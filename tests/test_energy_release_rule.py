@@ -216,6 +216,14 @@ def test_graded_circle_follows_from_its_own_stiffness(k, N):
     assert abs(result.pulloff_force / exact - 1) < HOLM_TOLERANCE
 
 
+def test_uncalibrated_graded_sigma_c_is_refused():
+    """The pinned edges' nucleation cap is the graded sigma_c: Eq. 42's own constant would decide
+    the pull-off (measured -1.05 % on the k = -0.5 circle at 45 per radius, against +0.16 %)."""
+    scene = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, -0.5), cs.Adhesion(1.0))
+    with pytest.raises(SceneError, match="settings.graded_criterion"):
+        bg.solve(scene, er_settings(8, graded_criterion="eq42"))
+
+
 def test_curved_profile_is_refused():
     scene = cs.Scene(
         cs.Indenter(cs.Circle(1.0), cs.Paraboloid(5.0)),
