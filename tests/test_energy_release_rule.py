@@ -1,8 +1,9 @@
 """The energy-release detachment criterion of the Griffith BEM (``bem_griffith.energy_release``):
 the release it measures is Kendall's on a circular rim to second order, Kendall's circle detaches
-where that release says (to the grid's own stiffness), rotations and units change nothing, a
+where that release says (to the grid's own stiffness), units change nothing, a
 wrong constant or a one-sided difference is caught, graded circles follow Eq. 39 the same way,
-and what it cannot do is refused."""
+and an uncalibrated graded sigma_c is refused.  The 90-degree rotation and the refusals it shares
+with the stress-intensity criterion are in tests/test_griffith_criterion.py."""
 
 from __future__ import annotations
 
@@ -112,26 +113,6 @@ def test_kendall_within_the_issue_target_at_128():
     assert abs(errors[1]) < abs(errors[0])
 
 
-def test_rotation_by_ninety_degrees_changes_nothing():
-    """An off-centre ellipse and its copy rotated by 90 degrees rasterise to rotated masks; the
-    stretches (8-connected pieces of front, 4-neighbour layers) are covariant under the
-    rotation: same pull-off, approach, stiffness and last stable set up to FFT round-off."""
-    centre = (0.013, 0.007)
-    shapes = [
-        cs.Ellipse(1.0, 0.6, center=centre),
-        cs.Ellipse(1.0, 0.6, rotation_deg=90.0, center=(-centre[1], centre[0])),
-    ]
-    N = 24
-    masks = [cs.rasterise(s, s.equivalent_radius / N).mask for s in shapes]
-    assert np.array_equal(np.rot90(masks[0]), masks[1])
-    results = [
-        bg.solve(cs.Scene(cs.Indenter(s), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0)), er_settings(N)) for s in shapes
-    ]
-    assert np.array_equal(np.rot90(results[0].last_stable.contact), results[1].last_stable.contact)
-    for q in ("pulloff_force", "pulloff_approach", "stiffness"):
-        assert getattr(results[1], q) == pytest.approx(getattr(results[0], q), rel=1e-9)
-
-
 def test_units_change_nothing():
     """A triangle with its modulus, work of adhesion and size rescaled: F_A / F_A,upper is the
     same number (the release and sigma_c scale together, the thresholds are ratios)."""
@@ -193,12 +174,26 @@ def test_without_a_measurable_stretch_it_is_eq22():
     assert abs(measured.pulloff_force / paper.pulloff_force - 1) > 1e-6  # the releases decided something
 
 
+def test_symmetric_stretches_share_their_release(monkeypatch):
+    """A stretch that is the image of another under a symmetry of the face and the contact set
+    (the square's four corners) takes the other's release: the same pull to the CG tolerance
+    that the release carries (it divides a stiffness difference by a layer), in fewer solves."""
+    scene = cs.Scene(cs.Indenter(cs.Square(math.sqrt(math.pi))), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
+    shared = bg.solve(scene, er_settings(24))
+    original = er.EnergyReleaseRule.__init__
+
+    def without(self, *args, **kw):
+        original(self, *args, **kw)
+        self._face_symmetries = []
+
+    monkeypatch.setattr(er.EnergyReleaseRule, "__init__", without)
+    each = bg.solve(scene, er_settings(24))
+    assert shared.pulloff_force == pytest.approx(each.pulloff_force, rel=1e-7)
+    assert np.array_equal(shared.last_stable.contact, each.last_stable.contact)
+    assert shared.stats.linear_solves < 0.6 * each.stats.linear_solves
+
+
 # -- what it refuses ----------------------------------------------------------------------------
-
-
-def test_periodic_grid_is_refused():
-    with pytest.raises(SceneError, match="settings.criterion.*energy_release"):
-        bg.GriffithSettings(grid=cs.Grid(elements_per_radius=8, periodic=True, period=4.0), criterion="energy_release")
 
 
 @pytest.mark.parametrize(("k", "N"), [(-0.5, 64), (0.5, 45)])
@@ -222,33 +217,3 @@ def test_uncalibrated_graded_sigma_c_is_refused():
     scene = cs.Scene(cs.Indenter(cs.Circle(1.0)), cs.PowerLawGraded(1.0, 1.0, -0.5), cs.Adhesion(1.0))
     with pytest.raises(SceneError, match="settings.graded_criterion"):
         bg.solve(scene, er_settings(8, graded_criterion="eq42"))
-
-
-def test_curved_profile_is_refused():
-    scene = cs.Scene(
-        cs.Indenter(cs.Circle(1.0), cs.Paraboloid(5.0)),
-        cs.Homogeneous(1.0, 0.5),
-        cs.Adhesion(1.0),
-        cs.Loading(press_approach=0.05),
-    )
-    with pytest.raises(SceneError, match="settings.criterion.*flat"):
-        bg.solve(scene, er_settings(8))
-
-
-def test_symmetric_stretches_share_their_release(monkeypatch):
-    """A stretch that is the image of another under a symmetry of the face and the contact set
-    (the square's four corners) takes the other's release: the same pull to the CG tolerance
-    that the release carries (it divides a stiffness difference by a layer), in fewer solves."""
-    scene = cs.Scene(cs.Indenter(cs.Square(math.sqrt(math.pi))), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
-    shared = bg.solve(scene, er_settings(24))
-    original = er.EnergyReleaseRule.__init__
-
-    def without(self, *args, **kw):
-        original(self, *args, **kw)
-        self._face_symmetries = []
-
-    monkeypatch.setattr(er.EnergyReleaseRule, "__init__", without)
-    each = bg.solve(scene, er_settings(24))
-    assert shared.pulloff_force == pytest.approx(each.pulloff_force, rel=1e-7)
-    assert np.array_equal(shared.last_stable.contact, each.last_stable.contact)
-    assert shared.stats.linear_solves < 0.6 * each.stats.linear_solves

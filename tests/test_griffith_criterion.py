@@ -1,6 +1,8 @@
 """The stress-intensity detachment criterion of the Griffith BEM (``bem_griffith.stress_intensity``):
 the fit is exact on the fields it is built for, Kendall's circle follows from its own stiffness,
-a 90-degree rotation of the grid changes nothing, and what it cannot do is refused."""
+a 90-degree rotation of the grid changes nothing, and what it cannot do is refused.  The rotation
+and the refusals shared with the energy-release criterion are checked here for both
+(the rest of that criterion: tests/test_energy_release_rule.py)."""
 
 from __future__ import annotations
 
@@ -144,21 +146,23 @@ def test_paper_criterion_is_the_default_and_misses_the_holm_check():
     assert holm_error(result) > 3 * HOLM_TOLERANCE
 
 
-def test_rotation_by_ninety_degrees_changes_nothing():
+@pytest.mark.parametrize(("criterion", "N"), [("stress_intensity", 32), ("energy_release", 24)])
+def test_rotation_by_ninety_degrees_changes_nothing(criterion, N):
     """An off-centre ellipse and its copy rotated by 90 degrees about the origin rasterise to
-    rotated masks, and the fit (disc windows, distance transform, quadratic in (x, y)) is
-    covariant under the rotation: same pull-off, approach, stiffness and contact sets up to
-    FFT round-off, although the windows see the grid from another side."""
+    rotated masks, and either criterion is covariant under the rotation (the fit's disc windows,
+    distance transform and quadratic in (x, y); the energy release's 8-connected stretches and
+    4-neighbour layers): same pull-off, approach, stiffness and contact sets up to FFT round-off,
+    although the windows and layers see the grid from another side."""
     centre = (0.013, 0.007)
     shapes = [
         cs.Ellipse(1.0, 0.6, center=centre),
         cs.Ellipse(1.0, 0.6, rotation_deg=90.0, center=(-centre[1], centre[0])),
     ]
-    N = 32
     masks = [cs.rasterise(s, s.equivalent_radius / N).mask for s in shapes]
     assert np.array_equal(np.rot90(masks[0]), masks[1])
+    settings = bg.GriffithSettings(grid=cs.Grid(elements_per_radius=N), criterion=criterion)
     results = [
-        bg.solve(cs.Scene(cs.Indenter(s), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0)), si_settings(N)) for s in shapes
+        bg.solve(cs.Scene(cs.Indenter(s), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0)), settings) for s in shapes
     ]
     assert results[0].stats.linear_solves == results[1].stats.linear_solves
     assert np.array_equal(np.rot90(results[0].last_stable.contact), results[1].last_stable.contact)
@@ -174,11 +178,10 @@ def test_unknown_criterion_is_refused():
         bg.GriffithSettings(criterion="griffith")
 
 
-def test_periodic_grid_is_refused():
-    with pytest.raises(SceneError, match="settings.criterion"):
-        bg.GriffithSettings(
-            grid=cs.Grid(elements_per_radius=8, periodic=True, period=4.0), criterion="stress_intensity"
-        )
+@pytest.mark.parametrize("criterion", ["stress_intensity", "energy_release"])
+def test_periodic_grid_is_refused(criterion):
+    with pytest.raises(SceneError, match=f"settings.criterion.*{criterion}"):
+        bg.GriffithSettings(grid=cs.Grid(elements_per_radius=8, periodic=True, period=4.0), criterion=criterion)
 
 
 def test_graded_body_is_refused_with_the_reason():
@@ -187,7 +190,8 @@ def test_graded_body_is_refused_with_the_reason():
         bg.solve(scene, si_settings(8))
 
 
-def test_curved_profile_is_refused():
+@pytest.mark.parametrize("criterion", ["stress_intensity", "energy_release"])
+def test_curved_profile_is_refused(criterion):
     scene = cs.Scene(
         cs.Indenter(cs.Circle(1.0), cs.Paraboloid(5.0)),
         cs.Homogeneous(1.0, 0.5),
@@ -195,7 +199,7 @@ def test_curved_profile_is_refused():
         cs.Loading(press_approach=0.05),
     )
     with pytest.raises(SceneError, match="settings.criterion.*flat"):
-        bg.solve(scene, si_settings(8))
+        bg.solve(scene, bg.GriffithSettings(grid=cs.Grid(elements_per_radius=8), criterion=criterion))
 
 
 def test_a_grid_too_coarse_for_the_fit_says_the_result_is_eq22s():
