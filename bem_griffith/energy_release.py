@@ -77,7 +77,7 @@ from .contact_set import solve_contact_set
 from .counters import WorkCounters
 from .stress_intensity import PaperRule, pressure_roundoff
 
-__all__ = ["MIN_STRETCH_CELLS", "EnergyReleaseRule", "StretchRelease", "front_stretches", "stretch_release"]
+__all__ = ["MIN_STRETCH_CELLS", "EnergyReleaseRule", "front_stretches", "stretch_release"]
 
 #: fewest cells of a stretch of front whose release the rule measures (smaller free pieces join
 #: the pinned stretch they touch; smaller pinned ones follow Eq. 22)
@@ -146,18 +146,6 @@ def front_stretches(
     return out
 
 
-class StretchRelease:
-    """One stretch's measured release: ``cells`` (boolean grid), ``pinned``, and G / d^2,
-    ``release_per_approach_squared`` (nan when the difference was not positive)."""
-
-    __slots__ = ("cells", "pinned", "release_per_approach_squared")
-
-    def __init__(self, cells: np.ndarray, pinned: bool, release_per_approach_squared: float):
-        self.cells = cells
-        self.pinned = pinned
-        self.release_per_approach_squared = release_per_approach_squared
-
-
 def stretch_release(problem, solution, cells, ahead, settings, counters: WorkCounters) -> float:
     """G / d^2 of one stretch of the front of ``solution``'s contact set: half of dS/dA at the
     current set, from the parabola through the stiffnesses of the set with ``cells`` peeled, the
@@ -209,11 +197,6 @@ class EnergyReleaseRule:
         self.paper = PaperRule(problem.critical_stress)
         self.work_of_adhesion = problem.work_of_adhesion
         self._last: tuple[object, np.ndarray] | None = None
-        #: contact solutions whose stretches were measured, and stretches measured in all
-        self.evaluations = 0
-        self.measured = 0
-        #: the stretches of the last solution measured (for diagnostics)
-        self.last_stretches: list[StretchRelease] = []
         self._face_symmetries = [op for op in _SYMMETRIES if _invariant(problem.face, op)]
         face = problem.face
         if face[0].any() or face[-1].any() or face[:, 0].any() or face[:, -1].any():
@@ -238,7 +221,6 @@ class EnergyReleaseRule:
         x1[contact] = solution.pressure_per_approach
         sigma = np.full(contact.shape, self.paper.critical_stress)
         size = int(contact.sum())
-        stretches = []
         if self.work_of_adhesion > 0:
             symmetries = self.symmetries(contact)
             known: dict[bytes, float] = {}
@@ -251,16 +233,12 @@ class EnergyReleaseRule:
                     release = stretch_release(self.problem, solution, cells, ahead, self.settings, self.counters)
                     for op in symmetries:
                         known[np.packbits(op(cells)).tobytes()] = release
-                stretches.append(StretchRelease(cells, pinned, release))
                 if not release > 0:
                     continue  # Eq. 22 there
                 critical = math.sqrt(self.work_of_adhesion / release) * float(x1[cells].max())
                 sigma[cells] = (
                     min(self.nucleation_factor * self.paper.critical_stress, critical) if pinned else critical
                 )
-        self.evaluations += 1
-        self.measured += len(stretches)
-        self.last_stretches = stretches
         out = sigma[contact]
         self._last = (solution, out)
         return out
