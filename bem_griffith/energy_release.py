@@ -36,19 +36,18 @@ Stretches:
   min(NUCLEATION_FACTOR sigma_c, sigma_R): the release lets the stretch go when its mean G
   reaches w, and Eq. 22 nucleates a detachment where the tension runs far above sigma_c (a
   corner) before that.  The factor (1.05) lies above Eq. 22's staircase bias, so that the most
-  stressed cells of a staircase rim do not leave early by it: with factor 1 they did on Kendall's
-  circle at 128 elements per radius (its error went from -0.13 % at 96 back to -0.18 %); with
-  1.05 the circle's error falls at every step over 48 ... 128 and the square's pull-off is
-  unchanged at 48 and 64 per radius.
+  stressed cells of a staircase rim do not leave early by it: with factor 1 they do on Kendall's
+  circle at 128 elements per radius (its error is -0.18 % there against -0.13 % at 96); with
+  1.05 the circle's error falls at every step over 48 ... 128 and the square's pull-off is the
+  same at 48 and 64 per radius.
 
 A stretch with ends (a pinned edge between two detached corners, a corner's free front ending
 on the face's edge) measures its ends as well: there the peeled and added layers are not each
 other's mirror images, so the two one-sided differences' second-order terms do not cancel
 there.  A pinned piece of ten cells between two detached corners of the square at 32 elements
-per radius measures a release about 1.8 times the mean of Eq. 22's local values; leaving such
-pieces to Eq. 22 alone did not change the square's pull-off at 32-64 per radius (to six
-digits), but on Kendall's circle, once notches have opened, they are what lets the rest of the
-rim go.  The free stretches' end effect shrinks as the stretch grows with the grid.
+per radius measures a release about 1.8 times the mean of Eq. 22's local values; left to Eq. 22
+alone, such pieces give the same square pull-off at 32-64 per radius (to six digits), but on
+Kendall's circle, once notches have opened, they are what lets the rest of the rim go.  The free stretches' end effect shrinks as the stretch grows with the grid.
 
 A stretch of fewer than ``MIN_STRETCH_CELLS`` cells (a one-cell notch, the last cells of a
 cascade) has no front for a difference to measure; its cells follow Eq. 22.
