@@ -123,7 +123,7 @@ class GriffithSettings:
         than the fitting window and a detached cell never re-attaches.  ``"energy_release"``:
         Eq. 22's ranking of the front cells, with the threshold of each stretch of front set
         so that its most stressed cell leaves when the stretch's energy release rate, measured
-        by a central difference of the solver's own stiffness, reaches w
+        by a three-point difference of the solver's own stiffness, reaches w
         (``bem_griffith.energy_release``); no constant calibrated on a straight edge, so no
         staircase bias, and no fitting window, so it holds at corners; several times the
         paper rule's solves; homogeneous and graded bodies.  Both alternatives: flat punches on
