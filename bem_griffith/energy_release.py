@@ -47,7 +47,8 @@ other's mirror images, so the two one-sided differences' second-order terms do n
 there.  A pinned piece of ten cells between two detached corners of the square at 32 elements
 per radius measures a release about 1.8 times the mean of Eq. 22's local values; left to Eq. 22
 alone, such pieces give the same square pull-off at 32-64 per radius (to six digits), but on
-Kendall's circle, once notches have opened, they are what lets the rest of the rim go.  The free stretches' end effect shrinks as the stretch grows with the grid.
+Kendall's circle, once notches have opened, they are what lets the rest of the rim go.  The free
+stretches' end effect shrinks as the stretch grows with the grid.
 
 A stretch of fewer than ``MIN_STRETCH_CELLS`` cells (a one-cell notch, the last cells of a
 cascade) has no front for a difference to measure; its cells follow Eq. 22.
