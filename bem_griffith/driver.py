@@ -36,7 +36,7 @@ from .counters import WorkCounters
 from .problem import Problem
 from .recording import PullRecorder
 from .settings import GriffithSettings
-from .stress_intensity import DetachmentRule, PaperRule, StressIntensityRule, detachment_rule, pressure_roundoff
+from .stress_intensity import DetachmentRule, PaperRule, detachment_rule, pressure_roundoff
 
 __all__ = ["PullOutcome", "pull", "next_event", "cascade", "gap_coefficients", "pull_targets"]
 
@@ -462,12 +462,8 @@ def pull(
                 break
         if not solution.attached or outcome.aborted:
             break
-    if isinstance(rule, StressIntensityRule) and rule.fits and not rule.usable_fits:
-        # the fit needs contact cells s_in .. 3 s_in behind the front: on a grid too coarse for
-        # that window every cell falls back to Eq. 22, and the result is the paper criterion's
-        outcome.messages.append(
-            f"criterion 'stress_intensity' found no front cell it could fit (its window reaches "
-            f"{rule.depths[1]:g} cells behind the front): every detachment followed Eq. 22; refine the grid"
-        )
+    fallback = rule.fallback_message()
+    if fallback is not None:
+        outcome.messages.append(fallback)
     outcome.final = solution
     return outcome

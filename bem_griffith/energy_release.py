@@ -197,6 +197,9 @@ class EnergyReleaseRule:
         self.paper = PaperRule(problem.critical_stress)
         self.work_of_adhesion = problem.work_of_adhesion
         self._last: tuple[object, np.ndarray] | None = None
+        #: stretches whose release could not be measured (not positive, or a solve that did not
+        #: converge): their cells followed Eq. 22 instead
+        self.unmeasured = 0
         self._face_symmetries = [op for op in _SYMMETRIES if _invariant(problem.face, op)]
         face = problem.face
         if face[0].any() or face[-1].any() or face[:, 0].any() or face[:, -1].any():
@@ -234,7 +237,8 @@ class EnergyReleaseRule:
                     for op in symmetries:
                         known[np.packbits(op(cells)).tobytes()] = release
                 if not release > 0:
-                    continue  # Eq. 22 there
+                    self.unmeasured += 1
+                    continue  # Eq. 22 there (fallback_message says so)
                 critical = math.sqrt(self.work_of_adhesion / release) * float(x1[cells].max())
                 sigma[cells] = (
                     min(self.nucleation_factor * self.paper.critical_stress, critical) if pinned else critical
@@ -242,6 +246,14 @@ class EnergyReleaseRule:
         out = sigma[contact]
         self._last = (solution, out)
         return out
+
+    def fallback_message(self) -> str | None:
+        if not self.unmeasured:
+            return None
+        return (
+            f"criterion 'energy_release' could not measure a stretch of front's release {self.unmeasured} time(s) "
+            "(a difference that was not positive, or a solve that did not converge): their cells followed Eq. 22"
+        )
 
     def critical_approaches(self, solution) -> np.ndarray:
         per_approach = solution.pressure_per_approach

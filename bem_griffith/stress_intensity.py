@@ -124,6 +124,10 @@ class DetachmentRule(Protocol):
     def detaching(self, solution, approach: float, tie_tolerance: float) -> np.ndarray:
         """Boolean mask over the contact cells that detach at ``approach``."""
 
+    def fallback_message(self) -> str | None:
+        """After the pull: a message if the rule had to leave cells to Eq. 22 where it meant to
+        decide them itself (None when it never did)."""
+
 
 @dataclass(frozen=True, eq=False)
 class PaperRule:
@@ -150,6 +154,9 @@ class PaperRule:
         tension = -solution.pressure(approach)
         roundoff = pressure_roundoff(approach, solution.pressure_per_approach, solution.profile_pressure)
         return tension >= self.threshold(tie_tolerance) - roundoff
+
+    def fallback_message(self) -> str | None:
+        return None
 
 
 def front_cells(contact: np.ndarray) -> np.ndarray:
@@ -343,6 +350,16 @@ class StressIntensityRule:
             return np.zeros(measure.shape, bool)
         return measure >= 1 - tie_tolerance
 
+    def fallback_message(self) -> str | None:
+        if not self.fits or self.usable_fits:
+            return None
+        # the fit needs contact cells s_in .. 3 s_in behind the front: on a grid too coarse for
+        # that window every cell falls back to Eq. 22, and the result is the paper criterion's
+        return (
+            f"criterion 'stress_intensity' found no front cell it could fit (its window reaches "
+            f"{self.depths[1]:g} cells behind the front): every detachment followed Eq. 22; refine the grid"
+        )
+
 
 @dataclass(frozen=True, eq=False)
 class FrontRelease:
@@ -408,11 +425,10 @@ def free_front_release(problem, contact: np.ndarray, settings, counters=None, so
     )
 
 
-def check_supported(
-    scene: Scene, periodic: bool, criterion: str = "stress_intensity", graded_criterion: str = "calibrated"
-) -> None:
-    """Refuse what the stress-intensity and energy-release criteria cannot do, naming the setting
-    (the energy release needs no G-K relation, so it takes graded bodies)."""
+def check_supported(scene: Scene, criterion: str = "stress_intensity", graded_criterion: str = "calibrated") -> None:
+    """Refuse the scenes the stress-intensity and energy-release criteria cannot do, naming the
+    setting (the energy release needs no G-K relation, so it takes graded bodies).  Periodic
+    grids are refused by ``GriffithSettings`` itself, which knows the grid."""
     if criterion == "stress_intensity" and not isinstance(scene.material, Homogeneous):
         raise SceneError(
             "settings.criterion",
@@ -439,15 +455,6 @@ def check_supported(
         raise SceneError(
             "settings.criterion", f"{criterion!r} supports flat punches only ({why}); use criterion = 'paper'"
         )
-    if periodic:
-        why = (
-            "its front windows do not wrap"
-            if criterion == "stress_intensity"
-            else "the layer ahead of a pinned edge needs the ring of cells around the face"
-        )
-        raise SceneError(
-            "settings.criterion", f"{criterion!r} does not support a periodic grid ({why}); use criterion = 'paper'"
-        )
 
 
 def detachment_rule(problem, scene: Scene, settings, counters=None) -> DetachmentRule:
@@ -455,7 +462,7 @@ def detachment_rule(problem, scene: Scene, settings, counters=None) -> Detachmen
     the energy-release rule)."""
     if settings.criterion == "paper":
         return PaperRule(problem.critical_stress)
-    check_supported(scene, settings.grid.periodic, settings.criterion, settings.graded_criterion)
+    check_supported(scene, settings.criterion, settings.graded_criterion)
     if settings.criterion == "energy_release":
         from .counters import WorkCounters
         from .energy_release import EnergyReleaseRule

@@ -174,6 +174,20 @@ def test_without_a_measurable_stretch_it_is_eq22():
     assert abs(measured.pulloff_force / paper.pulloff_force - 1) > 1e-6  # the releases decided something
 
 
+def test_an_unmeasurable_release_falls_to_eq22_and_says_so(monkeypatch):
+    """A release that cannot be measured (here every one: not positive) leaves its stretch to
+    Eq. 22, so the pull is the paper's, and the result's messages say how often."""
+    scene = cs.Scene(cs.Indenter(cs.Square(1.0)), cs.Homogeneous(0.75, 0.5), cs.Adhesion(1.0))
+    settings = er_settings(12)
+    paper = bg.solve(scene, dataclasses.replace(settings, criterion="paper"))
+    assert not any("energy_release" in m for m in bg.solve(scene, settings).messages)
+    monkeypatch.setattr(er, "stretch_release", lambda *args: -1.0)
+    fallback = bg.solve(scene, settings)
+    assert fallback.pulloff_force == pytest.approx(paper.pulloff_force, rel=1e-9)
+    (message,) = [m for m in fallback.messages if "could not measure" in m]
+    assert "followed Eq. 22" in message
+
+
 def test_symmetric_stretches_share_their_release(monkeypatch):
     """A stretch that is the image of another under a symmetry of the face and the contact set
     (the square's four corners) takes the other's release: the same pull to the CG tolerance
