@@ -168,7 +168,7 @@ def stretch_release(problem, solution, cells, ahead, settings, counters: WorkCou
     Returns
     -------
     float
-        G / d^2 (nan when the difference is not positive, e.g. a solve that did not converge).
+        G / d^2 (nan when the difference is not positive or either solve did not converge).
     """
     contact = solution.contact
     peeled = solve_contact_set(problem, contact & ~cells, settings, solution, counters)
@@ -197,8 +197,10 @@ class EnergyReleaseRule:
         self.paper = PaperRule(problem.critical_stress)
         self.work_of_adhesion = problem.work_of_adhesion
         self._last: tuple[object, np.ndarray] | None = None
-        #: stretches whose release could not be measured (not positive, or a solve that did not
-        #: converge): their cells followed Eq. 22 instead
+        #: releases measured (calls of ``stretch_release``; a symmetric image takes its
+        #: stretch's), and those that could not be used (not positive, or a solve that did not
+        #: converge): their stretches' cells followed Eq. 22
+        self.measured = 0
         self.unmeasured = 0
         self._face_symmetries = [op for op in _SYMMETRIES if _invariant(problem.face, op)]
         face = problem.face
@@ -234,10 +236,11 @@ class EnergyReleaseRule:
                 release = known.get(np.packbits(cells).tobytes())
                 if release is None:
                     release = stretch_release(self.problem, solution, cells, ahead, self.settings, self.counters)
+                    self.measured += 1
+                    self.unmeasured += not release > 0
                     for op in symmetries:
                         known[np.packbits(op(cells)).tobytes()] = release
                 if not release > 0:
-                    self.unmeasured += 1
                     continue  # Eq. 22 there (fallback_message says so)
                 critical = math.sqrt(self.work_of_adhesion / release) * float(x1[cells].max())
                 sigma[cells] = (
@@ -251,8 +254,9 @@ class EnergyReleaseRule:
         if not self.unmeasured:
             return None
         return (
-            f"criterion 'energy_release' could not measure a stretch of front's release {self.unmeasured} time(s) "
-            "(a difference that was not positive, or a solve that did not converge): their cells followed Eq. 22"
+            f"criterion 'energy_release': {self.unmeasured} of its {self.measured} release measurements were not "
+            "usable (a stiffness difference that was not positive, or a solve that did not converge); those "
+            "stretches of front followed Eq. 22"
         )
 
     def critical_approaches(self, solution) -> np.ndarray:

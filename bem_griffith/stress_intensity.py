@@ -125,8 +125,8 @@ class DetachmentRule(Protocol):
         """Boolean mask over the contact cells that detach at ``approach``."""
 
     def fallback_message(self) -> str | None:
-        """After the pull: a message if the rule had to leave cells to Eq. 22 where it meant to
-        decide them itself (None when it never did)."""
+        """After the pull: a message when the rule's own criterion could not act where it was
+        meant to and left the decision to Eq. 22 (each rule says when; None otherwise)."""
 
 
 @dataclass(frozen=True, eq=False)

@@ -617,6 +617,9 @@ class _CentreAlwaysLeaves:
         out[flat == self.centre] = True
         return out
 
+    def fallback_message(self):
+        return None
+
 
 def test_a_cascade_that_comes_back_to_a_set_stops_and_says_so():
     """A cascade that returns to a contact set it has left would repeat its passes up to the
