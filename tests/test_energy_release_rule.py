@@ -124,6 +124,34 @@ def test_kendall_circle_follows_from_its_own_stiffness(N):
     result = bg.solve(KENDALL, er_settings(N))
     assert result.converged and result.detached
     assert abs(holm_error(result)) < HOLM_TOLERANCE
+    assert not any("nucleation cap" in m for m in result.messages)
+
+
+@pytest.mark.parametrize(
+    "name, N, capped",
+    [
+        ("two_circles", 24, True),  # the small lobe's rim: its release exceeds the rim's mean
+        ("square", 45, False),
+        ("kendall_circle", 32, False),
+    ],
+)
+def test_the_message_says_when_the_nucleation_cap_decided_the_pulloff(monkeypatch, name, N, capped):
+    """The pull-off is the cap's (it scales with NUCLEATION_FACTOR, here raised by 1 %) exactly
+    when the result says so: a pinned front whose release varies along it (two lobes) reaches the
+    cap before its mean release reaches w; a square's corners nucleate by the cap but its force
+    maximum comes later, from a free front's release; the circle's rim lets go by its release.
+    (A larger change of the cap changes the path: at 45 per radius, 10 % moves the square's
+    pull-off by 4 %.)"""
+    from crossval.suite import load_scene_or_builtin
+
+    scene = load_scene_or_builtin(name)
+    default = bg.solve(scene, er_settings(N))
+    monkeypatch.setattr(er, "NUCLEATION_FACTOR", 1.01 * er.NUCLEATION_FACTOR)
+    raised = bg.solve(scene, er_settings(N))
+    said = [m for m in default.messages if "nucleation cap" in m]
+    assert bool(said) is capped
+    expected = 1.01 if capped else 1.0
+    assert raised.pulloff_force / default.pulloff_force == pytest.approx(expected, rel=1e-6)
 
 
 def test_a_two_percent_wrong_work_of_adhesion_fails_the_kendall_check(monkeypatch):
