@@ -188,6 +188,9 @@ def seed(cache: Path, doc: dict) -> dict[str, int]:
             for point in sweep["points"]:
                 row = {"face": face, "criterion": criterion, "messages": []} | point
                 put((face, "griffith", criterion, point["N"]), row, "griffith")
+        for criterion, rows in entry.get("capped_sweeps", {}).items():
+            for row in rows:
+                put((face, "griffith", criterion, row["N"]), row, "griffith")
         energy = entry.get("energy") or {}
         energy_runs.append((face, energy.get("runs"), energy.get("pulloff_force", {}).get("path_noise")))
     for face, runs, noise in energy_runs:
@@ -218,6 +221,8 @@ def griffith_point(face: str, criterion: str, N: float) -> dict:
         "normalised": {q: raw[q] * ratio ** AREA_POWER[q] / scale[q] for q in QUANTITIES},
         "converged": bool(res.converged and res.detached),
         "messages": list(res.messages) if not res.converged else [],
+        # energy_release: the pull-off was Eq. 22's at the nucleation cap, not the criterion's
+        "decided_by_cap": any("nucleation cap" in m for m in res.messages),
     }
 
 
@@ -278,6 +283,8 @@ def energy_range(face: str, ratio: float, zs: ZeroRangeSettings) -> dict:
         "elements_per_process_zone": zs.elements_per_process_zone,
         "converged": bool(res.converged and res.detached),
         "messages": list(res.messages) if not res.converged else [],
+        # energy_release: the pull-off was Eq. 22's at the nucleation cap, not the criterion's
+        "decided_by_cap": any("nucleation cap" in m for m in res.messages),
     }
 
 
@@ -425,7 +432,12 @@ def procedure_check(cache: Path, criterion: str, n: int) -> dict | None:
 
 
 def griffith_entry(cache: Path, face: str, criterion: str, checks: dict) -> dict | None:
-    rows = load_sweep(cache, face, criterion)
+    """The extrapolated sweep of a face and criterion.  A point whose pull-off the energy-release
+    rule's nucleation cap decided (``decided_by_cap``; the result says so) is Eq. 22's at the cap,
+    not the criterion's value, and stays out of the fit (listed under ``excluded``)."""
+    every = load_sweep(cache, face, criterion)
+    rows = [r for r in every if not r.get("decided_by_cap")]
+    excluded = [r["N"] for r in every if r.get("decided_by_cap")]
     if len(rows) < PRIMARY_POINTS:
         return None
     N = [r["N"] for r in rows]
@@ -452,6 +464,7 @@ def griffith_entry(cache: Path, face: str, criterion: str, checks: dict) -> dict
     return {
         "criterion": criterion,
         "resolutions": N,
+        "excluded": excluded,
         "all_converged": all(r["converged"] for r in rows),
         "quantities": out,
         "points": [
@@ -462,10 +475,11 @@ def griffith_entry(cache: Path, face: str, criterion: str, checks: dict) -> dict
                 "normalised": r["normalised"],
                 "converged": r["converged"],
                 "cpu_s": r.get("cpu_s"),
+                "decided_by_cap": r.get("decided_by_cap"),
             }
-            for r in rows
+            for r in every
         ],
-        "cpu_s": total_cpu(rows),
+        "cpu_s": total_cpu(every),
     }
 
 
@@ -503,6 +517,16 @@ def reference(qentry: dict) -> dict | None:
     }
 
 
+def _capped_out(cache: Path, face: str, method: str) -> list[float]:
+    """The grids at which ``method`` ("bem_griffith (criterion)") had its pull-off decided by the
+    nucleation cap, when that is what leaves its sweep short of a limit (else empty)."""
+    if not method.startswith("bem_griffith ("):
+        return []
+    rows = load_sweep(cache, face, method[len("bem_griffith (") : -1])
+    capped = [r["N"] for r in rows if r.get("decided_by_cap")]
+    return capped if capped and len(rows) - len(capped) < PRIMARY_POINTS <= len(rows) else []
+
+
 def assemble(cache: Path, criterion: str, ratios=None) -> dict:
     checks: dict = {}
     faces = {}
@@ -524,10 +548,27 @@ def assemble(cache: Path, criterion: str, ratios=None) -> dict:
         missing = [f"bem_griffith ({c})" for c, g in grif.items() if g is None]
         missing += ["bem_energy"] if energy is None else []
         if missing:
-            entry["not_computed"] = {
-                "methods": missing,
-                "why": "not in the cache this file was written from: the sweep did not finish within the run",
-            }
+            reasons = []
+            unfinished = [m for m in missing if not _capped_out(cache, face, m)]
+            if unfinished:
+                reasons.append(
+                    f"{', '.join(unfinished)}: not in the cache this file was written from: the sweep did not "
+                    "finish within the run"
+                )
+            for m in missing:
+                if Ns := _capped_out(cache, face, m):
+                    reasons.append(
+                        f"{m}: the pull-off at N = {', '.join(f'{n:g}' for n in Ns)} was Eq. 22's at the "
+                        f"nucleation cap, not the criterion's value, which leaves fewer than {PRIMARY_POINTS} grids"
+                    )
+            why = "; ".join(reasons)
+            entry["not_computed"] = {"methods": missing, "why": why}
+            # the runs of a sweep the cap left short, kept so that ``seed`` restores them
+            short = {c: load_sweep(cache, face, c) for c, g in grif.items() if g is None}
+            if any(_capped_out(cache, face, f"bem_griffith ({c})") for c in short):
+                entry["capped_sweeps"] = {
+                    c: rows for c, rows in short.items() if _capped_out(cache, face, f"bem_griffith ({c})")
+                }
         for q in QUANTITIES:
             g = primary["quantities"][q] if primary else None
             e = energy.get(q) if energy else None
