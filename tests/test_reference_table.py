@@ -376,3 +376,40 @@ def test_table_is_its_own_cache(table, tmp_path):
         "pulloff_force"
     ] *= 1.01
     assert rebuilt_problems(broken, tmp_path / "broken_noise")
+
+
+def test_points_decided_by_the_nucleation_cap_stay_out_of_the_fit(tmp_path):
+    """A point flagged ``decided_by_cap`` (Eq. 22's pull-off at the energy-release rule's cap, not
+    the criterion's) does not enter the limit, and a sweep it leaves short of four grids is
+    reported as such, with its runs kept for ``seed``: synthetic sweeps q = q0 + c / N."""
+    script = _load_script()
+    grids = (32, 45, 64, 90, 128)
+
+    def put(face, N, q0, capped=False):
+        q = {k: q0 + 0.2 / N for k in QUANTITIES}
+        row = {"face": face, "criterion": "energy_release", "N": N, "raw": q, "face_area": 1.0, "normalised": q}
+        row |= {"converged": True, "messages": [], "decided_by_cap": capped}
+        script.cache_file(tmp_path, face, "griffith", "energy_release", N).write_text(json.dumps(row))
+
+    for N in grids:
+        put(script.CHECK, N, 1.0)
+        put("square", N, 0.88 if N > 32 else 0.95, capped=N == 32)  # the capped point is off the line
+        put("star", N, 0.77, capped=N < 64)
+    doc = script.assemble(tmp_path, "energy_release")
+    square = doc["faces"]["square"]["griffith"]["energy_release"]
+    assert square["excluded"] == [32] and square["resolutions"] == [45, 64, 90, 128]
+    assert square["quantities"]["pulloff_force"]["value"] == pytest.approx(0.88, rel=1e-12)
+    assert [p["decided_by_cap"] for p in square["points"]] == [True, False, False, False, False]
+    star = doc["faces"]["star"]
+    assert "energy_release" not in star["griffith"]
+    assert "N = 32, 45 was Eq. 22's at the nucleation cap" in star["not_computed"]["why"]
+    assert [r["N"] for r in star["capped_sweeps"]["energy_release"]] == list(grids)
+    script.seed(tmp_path / "seeded", doc)
+    seeded = script.load_sweep(tmp_path / "seeded", "star", "energy_release")
+    stored = star["capped_sweeps"]["energy_release"]
+    assert [{k: v for k, v in r.items() if k != "seeded_from"} for r in seeded] == stored
+    # and without the flag the off-line point would have moved the limit
+    for N in grids:
+        put("square", N, 0.88 if N > 32 else 0.95)
+    moved = script.assemble(tmp_path, "energy_release")["faces"]["square"]["griffith"]["energy_release"]
+    assert abs(moved["quantities"]["pulloff_force"]["model_spread"]) > 1e-3
