@@ -63,6 +63,8 @@ class PullOutcome:
         strong adhesion, not a failure).
     messages
         What went wrong or deserves saying, for the result's messages.
+    rule_info
+        The detachment rule's keys for ``Result.info`` (``DetachmentRule.report``).
     """
 
     final: ContactSolution
@@ -72,6 +74,7 @@ class PullOutcome:
     aborted: bool = False
     reached_user_limit: bool = False
     messages: list[str] = field(default_factory=list)
+    rule_info: dict = field(default_factory=dict)
 
 
 def gap_coefficients(problem: Problem, solution: ContactSolution):
@@ -462,8 +465,9 @@ def pull(
                 break
         if not solution.attached or outcome.aborted:
             break
-    fallback = rule.fallback_message()
-    if fallback is not None:
-        outcome.messages.append(fallback)
+    # the result's pull-off is the curve's largest tension (result.assemble_result)
+    peak = int(np.argmax(-np.asarray(recorder.force))) if recorder.force else None
+    messages, outcome.rule_info = rule.report(recorder.approach[peak] if peak is not None else None)
+    outcome.messages.extend(messages)
     outcome.final = solution
     return outcome

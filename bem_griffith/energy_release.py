@@ -210,9 +210,11 @@ class EnergyReleaseRule:
         #: converge): their stretches' cells followed Eq. 22
         self.measured = 0
         self.unmeasured = 0
-        #: the largest tension at which cells detached, and whether the cell furthest past its
-        #: threshold there had the nucleation cap, not its stretch's release, as threshold
-        self.peak: tuple[float, bool] = (-math.inf, False)
+        #: per approach at which cells detached (the first pass there): whether every one of
+        #: them was held by the nucleation cap, not by its stretch's release (event driver only:
+        #: its curve point at an event is the state the cells left from)
+        self.by_cap: dict[float, bool] = {}
+        self.records_events = settings.driver == "event"
         self._face_symmetries = [op for op in _SYMMETRIES if _invariant(problem.face, op)]
         face = problem.face
         if face[0].any() or face[-1].any() or face[:, 0].any() or face[:, -1].any():
@@ -257,7 +259,7 @@ class EnergyReleaseRule:
                     for op in symmetries:
                         known[np.packbits(op(cells)).tobytes()] = release
                 if not release > 0:
-                    continue  # Eq. 22 there (fallback_message says so)
+                    continue  # Eq. 22 there (report says so)
                 critical = math.sqrt(self.work_of_adhesion / release) * float(x1[cells].max())
                 cap = self.nucleation_factor * self.paper.critical_stress
                 if pinned and cap < critical:
@@ -268,7 +270,7 @@ class EnergyReleaseRule:
         self._last = (solution, *out)
         return out
 
-    def fallback_message(self) -> str | None:
+    def report(self, pulloff_approach: float | None) -> tuple[list[str], dict]:
         out = []
         if self.unmeasured:
             out.append(
@@ -276,15 +278,16 @@ class EnergyReleaseRule:
                 "usable (a stiffness difference that was not positive, or a solve that did not converge); those "
                 "stretches of front followed Eq. 22"
             )
-        if self.peak[1]:
+        if not self.records_events:
+            return out, {}
+        by_cap = self.by_cap.get(pulloff_approach, False) if pulloff_approach is not None else False
+        if by_cap:
             out.append(
-                f"criterion 'energy_release': the cells that let go at the largest tension were held by the "
-                f"nucleation cap ({self.nucleation_factor:g} sigma_c, Eq. 22), not by a measured release: the "
-                "pinned front's mean release had not reached w (its release varies along it, e.g. two lobes), so "
-                f"the pull-off is Eq. 22's at that tension, up to {self.nucleation_factor - 1:.0%} above Eq. 22's at "
-                "sigma_c (criterion 'paper')"
+                f"criterion 'energy_release': the cells that let go at the pull-off were held by the nucleation cap "
+                f"({self.nucleation_factor:g} sigma_c, Eq. 22), not by a measured release (a pinned front's mean "
+                "release had not reached w), so the pull-off is Eq. 22's at that tension and moves with the cap"
             )
-        return "; ".join(out) or None
+        return out, {"pulloff_by_cap": by_cap}
 
     def critical_approaches(self, solution) -> np.ndarray:
         per_approach = solution.pressure_per_approach
@@ -299,10 +302,6 @@ class EnergyReleaseRule:
         tension = -approach * solution.pressure_per_approach
         roundoff = pressure_roundoff(approach, solution.pressure_per_approach)
         out = tension >= sigma * (1 - tie_tolerance) - roundoff
-        if out.any():
-            # a flat face's force is d S: the pull-off is the largest tension at which cells let go
-            force = -approach * float(solution.pressure_per_approach.sum()) * self.problem.cell_area
-            if force > self.peak[0]:
-                # what decided the event: the cell furthest past its threshold
-                self.peak = (force, bool(capped[np.argmax(np.where(out, tension / sigma, -np.inf))]))
+        if self.records_events and out.any() and approach not in self.by_cap:
+            self.by_cap[approach] = not (out & ~capped).any()
         return out

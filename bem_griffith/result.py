@@ -66,6 +66,10 @@ class GriffithInfo(_GriffithInfoBase, total=False):
         showed which elements leave next (``GriffithSettings.decide_early``).
     criterion : str
         The detachment rule: ``"paper"`` (Eq. 22), ``"stress_intensity"`` or ``"energy_release"``.
+    pulloff_by_cap : bool
+        ``"energy_release"`` under the event driver only: the cells that let go at the pull-off
+        were all held by the rule's nucleation cap (Eq. 22 at ``NUCLEATION_FACTOR`` sigma_c), not
+        by a measured release, so the pull-off is Eq. 22's at the cap.
     graded_criterion : str
         ``"calibrated"`` or ``"eq42"``; present for graded bodies with adhesion and k != 0 only,
         like the two keys below.
@@ -78,6 +82,7 @@ class GriffithInfo(_GriffithInfoBase, total=False):
     graded_criterion: Literal["calibrated", "eq42"]
     criterion_ratio: float  # r(k) that divides Eq. 42's sigma_c (calibrated only)
     criterion_uncertainty: float  # u(k), r's uncertainty (calibrated only)
+    pulloff_by_cap: bool  # energy_release, event driver: the pull-off was the nucleation cap's
 
 
 def graded_criterion_note(scene: Scene, settings: GriffithSettings) -> tuple[dict, str | None]:
@@ -193,6 +198,7 @@ def assemble_result(
         "decided_solves": counters.decided_solves,
         "criterion": settings.criterion,
         **graded_info,
+        **outcome.rule_info,
     }
     return Result(
         method="bem_griffith",

@@ -124,9 +124,10 @@ class DetachmentRule(Protocol):
     def detaching(self, solution, approach: float, tie_tolerance: float) -> np.ndarray:
         """Boolean mask over the contact cells that detach at ``approach``."""
 
-    def fallback_message(self) -> str | None:
-        """After the pull: a message when the rule's own criterion could not act where it was
-        meant to and left the decision to Eq. 22 (each rule says when; None otherwise)."""
+    def report(self, pulloff_approach: float | None) -> tuple[list[str], dict]:
+        """After the pull, given the approach of its largest tension: messages for the result
+        (where the rule's own criterion could not act and left a decision to Eq. 22, each rule
+        says when) and keys for ``Result.info``."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -155,8 +156,8 @@ class PaperRule:
         roundoff = pressure_roundoff(approach, solution.pressure_per_approach, solution.profile_pressure)
         return tension >= self.threshold(tie_tolerance) - roundoff
 
-    def fallback_message(self) -> str | None:
-        return None
+    def report(self, pulloff_approach: float | None) -> tuple[list[str], dict]:
+        return [], {}
 
 
 def front_cells(contact: np.ndarray) -> np.ndarray:
@@ -350,15 +351,15 @@ class StressIntensityRule:
             return np.zeros(measure.shape, bool)
         return measure >= 1 - tie_tolerance
 
-    def fallback_message(self) -> str | None:
+    def report(self, pulloff_approach: float | None) -> tuple[list[str], dict]:
         if not self.fits or self.usable_fits:
-            return None
+            return [], {}
         # the fit needs contact cells s_in .. 3 s_in behind the front: on a grid too coarse for
         # that window every cell falls back to Eq. 22, and the result is the paper criterion's
-        return (
+        return [
             f"criterion 'stress_intensity' found no front cell it could fit (its window reaches "
             f"{self.depths[1]:g} cells behind the front): every detachment followed Eq. 22; refine the grid"
-        )
+        ], {}
 
 
 @dataclass(frozen=True, eq=False)

@@ -222,7 +222,7 @@ def griffith_point(face: str, criterion: str, N: float) -> dict:
         "converged": bool(res.converged and res.detached),
         "messages": list(res.messages) if not res.converged else [],
         # energy_release: the pull-off was Eq. 22's at the nucleation cap, not the criterion's
-        "decided_by_cap": any("nucleation cap" in m for m in res.messages),
+        "decided_by_cap": bool(res.info.get("pulloff_by_cap", False)),
     }
 
 
@@ -283,8 +283,6 @@ def energy_range(face: str, ratio: float, zs: ZeroRangeSettings) -> dict:
         "elements_per_process_zone": zs.elements_per_process_zone,
         "converged": bool(res.converged and res.detached),
         "messages": list(res.messages) if not res.converged else [],
-        # energy_release: the pull-off was Eq. 22's at the nucleation cap, not the criterion's
-        "decided_by_cap": any("nucleation cap" in m for m in res.messages),
     }
 
 
@@ -524,7 +522,7 @@ def _capped_out(cache: Path, face: str, method: str) -> list[float]:
         return []
     rows = load_sweep(cache, face, method[len("bem_griffith (") : -1])
     capped = [r["N"] for r in rows if r.get("decided_by_cap")]
-    return capped if capped and len(rows) - len(capped) < PRIMARY_POINTS <= len(rows) else []
+    return capped if capped and len(rows) - len(capped) < PRIMARY_POINTS else []
 
 
 def assemble(cache: Path, criterion: str, ratios=None) -> dict:
@@ -559,7 +557,7 @@ def assemble(cache: Path, criterion: str, ratios=None) -> dict:
                 if Ns := _capped_out(cache, face, m):
                     reasons.append(
                         f"{m}: the pull-off at N = {', '.join(f'{n:g}' for n in Ns)} was Eq. 22's at the "
-                        f"nucleation cap, not the criterion's value, which leaves fewer than {PRIMARY_POINTS} grids"
+                        f"nucleation cap, not the criterion's value, and fewer than {PRIMARY_POINTS} other grids ran"
                     )
             why = "; ".join(reasons)
             entry["not_computed"] = {"methods": missing, "why": why}

@@ -617,8 +617,8 @@ class _CentreAlwaysLeaves:
         out[flat == self.centre] = True
         return out
 
-    def fallback_message(self):
-        return None
+    def report(self, pulloff_approach):
+        return [], {}
 
 
 def test_a_cascade_that_comes_back_to_a_set_stops_and_says_so():

@@ -403,6 +403,7 @@ def test_points_decided_by_the_nucleation_cap_stay_out_of_the_fit(tmp_path):
     star = doc["faces"]["star"]
     assert "energy_release" not in star["griffith"]
     assert "N = 32, 45 was Eq. 22's at the nucleation cap" in star["not_computed"]["why"]
+    assert star["not_computed"]["why"].count("bem_griffith (energy_release)") == 1  # not also "did not finish"
     assert [r["N"] for r in star["capped_sweeps"]["energy_release"]] == list(grids)
     script.seed(tmp_path / "seeded", doc)
     seeded = script.load_sweep(tmp_path / "seeded", "star", "energy_release")
