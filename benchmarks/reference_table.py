@@ -642,6 +642,30 @@ def fmt(v: dict | None, digits: int = 4) -> str:
     return f"{v['value']:.{digits}f} ± {100 * v['relative_bar']:.2g} %"
 
 
+def criterion_cell(entry: dict, criterion: str) -> str:
+    """A non-reference criterion's F_A / F_A,upper: value and bar, its grids when points were
+    excluded (the nucleation cap), whether it disagrees with the energy BEM, or why it is
+    missing."""
+    sweep = entry["griffith"].get(criterion)
+    if sweep is None:
+        rows = entry.get("capped_sweeps", {}).get(criterion)
+        if not rows:
+            return "-"
+        capped = [r["N"] for r in rows if r.get("decided_by_cap")]
+        every = " (every grid run)" if len(capped) == len(rows) else f" (fewer than {PRIMARY_POINTS} other grids)"
+        return f"- (N = {', '.join(f'{n:g}' for n in capped)}: cap{every})"
+    f = entry["quantities"]["pulloff_force"]
+    mine = f.get("bem_griffith_" + criterion)
+    text = fmt(mine)
+    if sweep.get("excluded"):
+        excluded = ", ".join(f"{n:g}" for n in sweep["excluded"])
+        text += f" (N = {', '.join(f'{n:g}' for n in sweep['resolutions'])}; {excluded}: cap)"
+    versus = agreement(mine, f.get("bem_energy"))
+    if versus is not None and not versus["agreement"]:
+        text += f", not within the energy BEM's bars (energy BEM {100 * versus['relative_gap']:+.2f} %)"
+    return text
+
+
 def write(cache: Path, criterion: str, ratios=None) -> None:
     if not any(cache.glob("*__griffith__*.json")):
         raise SystemExit(f"no cached solve in {cache}: run the griffith and energy parts first (same --cache)")
@@ -676,7 +700,8 @@ def write(cache: Path, criterion: str, ratios=None) -> None:
             "each solve's quantity scaled to the nominal area by (A / A_h)^p (p = 3/4, 1/4, 1/2); limit = "
             f"least-squares q0 + c/N over the finest {PRIMARY_POINTS} grids; bar = largest distance to the fits "
             "q0 + c/N + e/N^2 over all grids and q0 + c/N through the finest two, plus |error| of the same "
-            "procedure on Kendall's circle (check)"
+            "procedure on Kendall's circle (check); a point whose pull-off the energy-release rule's nucleation cap "
+            "decided (decided_by_cap) is Eq. 22's at the cap and stays out (excluded)"
         ),
         "energy_procedure": (
             f"bem_energy zero-range limit, ZeroRangeSettings (l_c / a = {lcs} at "
@@ -718,7 +743,7 @@ def write(cache: Path, criterion: str, ratios=None) -> None:
                 fmt(f.get("bem_energy")),
                 noise_cell(entry["energy"]),
                 agree,
-                *(fmt(f.get("bem_griffith_" + c)) for c in other_criteria),
+                *(criterion_cell(entry, c) for c in other_criteria),
                 fmt(qs["pulloff_approach"].get("bem_griffith")),
                 fmt(qs["stiffness"].get("bem_griffith")),
                 fmt(qs["stiffness"].get("bem_energy")),
