@@ -55,8 +55,10 @@ uniform along the pinned front (a circle) and late where it is not.  A corner ha
 smooth front whose release varies along it does not: on the two overlapping circles the small
 lobe's rim reaches the cap before the rim's mean release reaches w, and the pull-off is Eq. 22's
 at NUCLEATION_FACTOR sigma_c (it moves with the factor: tests/test_energy_release_rule.py), 4.8 %
-above the paper criterion's at 32 per radius.  The rule notes the event at the largest tension
-and what decided it, and the result's messages say when it was the cap.
+above the paper criterion's at 32 per radius; so is the square's at 32, where its corners
+nucleate at its force maximum.  The rule notes at each event whether every cell that left was
+held by the cap, and when that was the pull-off's event the result says so (its messages and
+``info["pulloff_by_cap"]``).
 
 A stretch of fewer than ``MIN_STRETCH_CELLS`` cells (a one-cell notch, the last cells of a
 cascade) has no front for a difference to measure; its cells follow Eq. 22.
