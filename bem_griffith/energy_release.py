@@ -51,8 +51,9 @@ Kendall's circle, once notches have opened, they are what lets the rest of the r
 stretches' end effect shrinks as the stretch grows with the grid.
 
 The pinned threshold is the stretch's mean release, so it is right where the release is
-uniform along the pinned front (a circle) and late where it is not.  A corner has its cap; a
-smooth front whose release varies along it does not: on the two overlapping circles the small
+uniform along the pinned front (a circle) and late where it is not.  At a corner the cap is
+meant to act first (Eq. 22 nucleates there); on a smooth front whose release varies along it,
+it acts too, as a stand-in for the release: on the two overlapping circles the small
 lobe's rim reaches the cap before the rim's mean release reaches w, and the pull-off is Eq. 22's
 at NUCLEATION_FACTOR sigma_c (it moves with the factor: tests/test_energy_release_rule.py), 4.8 %
 above the paper criterion's at 32 per radius; so is the square's at 32, where its corners
