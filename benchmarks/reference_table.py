@@ -597,8 +597,25 @@ def assemble(cache: Path, criterion: str, ratios=None) -> dict:
     return {
         "check": {k: v for k, v in checks.items() if v is not None},
         "energy_check": energy_check(cache, ratios),
+        "rotation_check": rotation_check(faces),
         "faces": faces,
     }
+
+
+def rotation_check(faces: dict) -> dict:
+    """The square against the same square at 45 degrees to the grid, per method (and criterion)
+    and quantity: whether they agree within their combined bars (the physics does not see the
+    grid, so a gap beyond the bars says the bars are too narrow), and the gap."""
+    if "square" not in faces or "square_45" not in faces:
+        return {}
+    a, b = faces["square"]["quantities"], faces["square_45"]["quantities"]
+    out: dict = {}
+    for q in QUANTITIES:
+        for m in sorted(k for k in a[q] if k.startswith("bem_") and k in b[q]):
+            agree = agreement(a[q][m], b[q][m])
+            if agree is not None:
+                out.setdefault(m, {})[q] = agree
+    return out
 
 
 def energy_check(cache: Path, ratios=None) -> dict | None:
@@ -642,7 +659,7 @@ def fmt(v: dict | None, digits: int = 4) -> str:
     return f"{v['value']:.{digits}f} ± {100 * v['relative_bar']:.2g} %"
 
 
-def criterion_cell(entry: dict, criterion: str) -> str:
+def criterion_cell(entry: dict, criterion: str, rotation: dict | None = None) -> str:
     """A non-reference criterion's F_A / F_A,upper: value and bar, its grids when points were
     excluded (the nucleation cap), whether it disagrees with the energy BEM, or why it is
     missing."""
@@ -663,6 +680,9 @@ def criterion_cell(entry: dict, criterion: str) -> str:
     versus = agreement(mine, f.get("bem_energy"))
     if versus is not None and not versus["agreement"]:
         text += f", not within the energy BEM's bars (energy BEM {100 * versus['relative_gap']:+.2f} %)"
+    turned = (rotation or {}).get("bem_griffith_" + criterion, {}).get("pulloff_force")
+    if turned is not None and not turned["agreement"]:
+        text += f", not within the square's bars ({100 * turned['relative_gap']:+.2f} %)"
     return text
 
 
@@ -743,7 +763,10 @@ def write(cache: Path, criterion: str, ratios=None) -> None:
                 fmt(f.get("bem_energy")),
                 noise_cell(entry["energy"]),
                 agree,
-                *(criterion_cell(entry, c) for c in other_criteria),
+                *(
+                    criterion_cell(entry, c, table["rotation_check"] if face == "square_45" else None)
+                    for c in other_criteria
+                ),
                 fmt(qs["pulloff_approach"].get("bem_griffith")),
                 fmt(qs["stiffness"].get("bem_griffith")),
                 fmt(qs["stiffness"].get("bem_energy")),
