@@ -465,9 +465,7 @@ def pull(
                 break
         if not solution.attached or outcome.aborted:
             break
-    # the result's pull-off is the curve's largest tension (result.assemble_result)
-    peak = int(np.argmax(-np.asarray(recorder.force))) if recorder.force else None
-    messages, outcome.rule_info = rule.report(recorder.approach[peak] if peak is not None else None)
+    messages, outcome.rule_info = rule.report(recorder.approach[recorder.peak()])
     outcome.messages.extend(messages)
     outcome.final = solution
     return outcome

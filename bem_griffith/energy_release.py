@@ -217,7 +217,6 @@ class EnergyReleaseRule:
         #: them was held by the nucleation cap, not by its stretch's release (event driver only:
         #: its curve point at an event is the state the cells left from)
         self.by_cap: dict[float, bool] = {}
-        self.records_events = settings.driver == "event"
         self._face_symmetries = [op for op in _SYMMETRIES if _invariant(problem.face, op)]
         face = problem.face
         if face[0].any() or face[-1].any() or face[:, 0].any() or face[:, -1].any():
@@ -249,6 +248,7 @@ class EnergyReleaseRule:
         size = int(contact.sum())
         if self.work_of_adhesion > 0:
             symmetries = self.symmetries(contact)
+            cap = self.nucleation_factor * self.paper.critical_stress
             known: dict[bytes, float] = {}
             for cells, ahead, pinned in front_stretches(self.problem.face, contact, self.min_cells):
                 count = int(cells.sum())
@@ -264,7 +264,6 @@ class EnergyReleaseRule:
                 if not release > 0:
                     continue  # Eq. 22 there (report says so)
                 critical = math.sqrt(self.work_of_adhesion / release) * float(x1[cells].max())
-                cap = self.nucleation_factor * self.paper.critical_stress
                 if pinned and cap < critical:
                     sigma[cells], capped[cells] = cap, True
                 else:
@@ -273,7 +272,7 @@ class EnergyReleaseRule:
         self._last = (solution, *out)
         return out
 
-    def report(self, pulloff_approach: float | None) -> tuple[list[str], dict]:
+    def report(self, pulloff_approach: float) -> tuple[list[str], dict]:
         out = []
         if self.unmeasured:
             out.append(
@@ -281,9 +280,9 @@ class EnergyReleaseRule:
                 "usable (a stiffness difference that was not positive, or a solve that did not converge); those "
                 "stretches of front followed Eq. 22"
             )
-        if not self.records_events:
+        if self.settings.driver != "event":
             return out, {}
-        by_cap = self.by_cap.get(pulloff_approach, False) if pulloff_approach is not None else False
+        by_cap = self.by_cap.get(pulloff_approach, False)
         if by_cap:
             out.append(
                 f"criterion 'energy_release': the cells that let go at the pull-off were held by the nucleation cap "
@@ -305,6 +304,6 @@ class EnergyReleaseRule:
         tension = -approach * solution.pressure_per_approach
         roundoff = pressure_roundoff(approach, solution.pressure_per_approach)
         out = tension >= sigma * (1 - tie_tolerance) - roundoff
-        if self.records_events and out.any() and approach not in self.by_cap:
+        if self.settings.driver == "event" and out.any() and approach not in self.by_cap:
             self.by_cap[approach] = not (out & ~capped).any()
         return out

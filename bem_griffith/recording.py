@@ -73,5 +73,10 @@ class PullRecorder:
             displacement,
         )
 
+    def peak(self) -> int:
+        """The index of the largest tension on the curve so far, the pull-off's point (the
+        pressed state is always recorded first)."""
+        return int(np.argmax(-np.asarray(self.force)))
+
     def curve(self) -> Curve:
         return Curve(np.array(self.approach), np.array(self.force), np.array(self.contact_area))

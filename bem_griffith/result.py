@@ -6,8 +6,6 @@ from __future__ import annotations
 import logging
 from typing import Literal, TypedDict
 
-import numpy as np
-
 from contact_scene import PowerLawGraded, Result, Scene
 from contact_scene.result import unrecorded_snapshots, zero_range_note
 
@@ -124,7 +122,7 @@ def assemble_result(
     recorded curve (0 if the curve never goes tensile)."""
     curve = recorder.curve()
     tensile = -curve.force
-    peak = int(np.argmax(tensile))
+    peak = recorder.peak()
     pulloff = float(max(tensile[peak], 0.0)) + 0.0  # never -0.0
     detached = not outcome.final.attached
     messages = list(outcome.messages)

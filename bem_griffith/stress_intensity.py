@@ -124,7 +124,7 @@ class DetachmentRule(Protocol):
     def detaching(self, solution, approach: float, tie_tolerance: float) -> np.ndarray:
         """Boolean mask over the contact cells that detach at ``approach``."""
 
-    def report(self, pulloff_approach: float | None) -> tuple[list[str], dict]:
+    def report(self, pulloff_approach: float) -> tuple[list[str], dict]:
         """After the pull, given the approach of its largest tension: messages for the result
         (where the rule's own criterion could not act and left a decision to Eq. 22, each rule
         says when) and keys for ``Result.info``."""
@@ -156,7 +156,7 @@ class PaperRule:
         roundoff = pressure_roundoff(approach, solution.pressure_per_approach, solution.profile_pressure)
         return tension >= self.threshold(tie_tolerance) - roundoff
 
-    def report(self, pulloff_approach: float | None) -> tuple[list[str], dict]:
+    def report(self, pulloff_approach: float) -> tuple[list[str], dict]:
         return [], {}
 
 
@@ -351,7 +351,7 @@ class StressIntensityRule:
             return np.zeros(measure.shape, bool)
         return measure >= 1 - tie_tolerance
 
-    def report(self, pulloff_approach: float | None) -> tuple[list[str], dict]:
+    def report(self, pulloff_approach: float) -> tuple[list[str], dict]:
         if not self.fits or self.usable_fits:
             return [], {}
         # the fit needs contact cells s_in .. 3 s_in behind the front: on a grid too coarse for

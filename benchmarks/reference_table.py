@@ -515,12 +515,9 @@ def reference(qentry: dict) -> dict | None:
     }
 
 
-def _capped_out(cache: Path, face: str, method: str) -> list[float]:
-    """The grids at which ``method`` ("bem_griffith (criterion)") had its pull-off decided by the
-    nucleation cap, when that is what leaves its sweep short of a limit (else empty)."""
-    if not method.startswith("bem_griffith ("):
-        return []
-    rows = load_sweep(cache, face, method[len("bem_griffith (") : -1])
+def _capped_out(rows: list[dict]) -> list[float]:
+    """The grids of a sweep's ``rows`` whose pull-off the nucleation cap decided, when they are
+    what leaves the sweep short of a limit (else empty)."""
     capped = [r["N"] for r in rows if r.get("decided_by_cap")]
     return capped if capped and len(rows) - len(capped) < PRIMARY_POINTS else []
 
@@ -543,30 +540,27 @@ def assemble(cache: Path, criterion: str, ratios=None) -> dict:
             "griffith": {c: g for c, g in grif.items() if g is not None},
             "energy": energy,
         }
-        missing = [f"bem_griffith ({c})" for c, g in grif.items() if g is None]
-        missing += ["bem_energy"] if energy is None else []
-        if missing:
+        short = {c: load_sweep(cache, face, c) for c, g in grif.items() if g is None}
+        capped = {c: Ns for c, rows in short.items() if (Ns := _capped_out(rows))}
+        unfinished = [f"bem_griffith ({c})" for c in short if c not in capped]
+        unfinished += ["bem_energy"] if energy is None else []
+        if short or energy is None:
             reasons = []
-            unfinished = [m for m in missing if not _capped_out(cache, face, m)]
             if unfinished:
                 reasons.append(
                     f"{', '.join(unfinished)}: not in the cache this file was written from: the sweep did not "
                     "finish within the run"
                 )
-            for m in missing:
-                if Ns := _capped_out(cache, face, m):
-                    reasons.append(
-                        f"{m}: the pull-off at N = {', '.join(f'{n:g}' for n in Ns)} was Eq. 22's at the "
-                        f"nucleation cap, not the criterion's value, and fewer than {PRIMARY_POINTS} other grids ran"
-                    )
-            why = "; ".join(reasons)
-            entry["not_computed"] = {"methods": missing, "why": why}
-            # the runs of a sweep the cap left short, kept so that ``seed`` restores them
-            short = {c: load_sweep(cache, face, c) for c, g in grif.items() if g is None}
-            if any(_capped_out(cache, face, f"bem_griffith ({c})") for c in short):
-                entry["capped_sweeps"] = {
-                    c: rows for c, rows in short.items() if _capped_out(cache, face, f"bem_griffith ({c})")
-                }
+            for c, Ns in capped.items():
+                reasons.append(
+                    f"bem_griffith ({c}): the pull-off at N = {', '.join(f'{n:g}' for n in Ns)} was Eq. 22's at the "
+                    f"nucleation cap, not the criterion's value, and fewer than {PRIMARY_POINTS} other grids ran"
+                )
+            missing = [f"bem_griffith ({c})" for c in short] + (["bem_energy"] if energy is None else [])
+            entry["not_computed"] = {"methods": missing, "why": "; ".join(reasons)}
+            if capped:
+                # the runs of a sweep the cap left short, kept so that ``seed`` restores them
+                entry["capped_sweeps"] = {c: short[c] for c in capped}
         for q in QUANTITIES:
             g = primary["quantities"][q] if primary else None
             e = energy.get(q) if energy else None
