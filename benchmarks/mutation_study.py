@@ -260,8 +260,8 @@ MUTANTS: tuple[Mutant, ...] = (
         "S1-griffith-tension-sign",
         "bem_griffith",
         "bem_griffith/result.py",
-        "tensile = -curve.force",
-        "tensile = np.abs(curve.force)",
+        "tensile = -curve.force\n    peak = recorder.peak()",
+        "tensile = abs(curve.force)\n    peak = int(tensile.argmax())",
         "the pull-off read as the largest |F| of the curve, compressive or tensile (sign convention)",
     ),
 )
