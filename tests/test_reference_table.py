@@ -210,6 +210,77 @@ def test_procedure_check_on_kendall(table):
     assert check_problems(broken)
 
 
+def tail_problems(doc: dict) -> list[str]:
+    """Every Griffith bar covers its sweep's tail estimate plus the circle's bias, recomputed
+    from the stored points the fit kept: the larger distance from the limit to the two limits
+    the finest step allows, q_f + (q_f - q_s) / (t^p - 1) with t = N_f / N_s, for p at either end
+    of the script's rate bracket."""
+    rates = _load_script().GRIFFITH_RATES
+    out = []
+    for face, entry in doc["faces"].items():
+        for criterion, sweep in entry["griffith"].items():
+            kept = sorted((p for p in sweep["points"] if p["N"] in sweep["resolutions"]), key=lambda p: p["N"])
+            (n_s, n_f), (a, b) = [p["N"] for p in kept[-2:]], [p["normalised"] for p in kept[-2:]]
+            for q, v in sweep["quantities"].items():
+                ends = [b[q] + (b[q] - a[q]) / ((n_f / n_s) ** r - 1) for r in rates]
+                tail = max(abs(v["value"] - e) for e in ends)
+                bias = doc["check"][v["circle_check"]]["bias"][q]
+                if v["relative_bar"] * abs(v["value"]) < (tail + bias) * (1 - 1e-12):
+                    out.append(f"{face} {criterion} {q}: bar {v['relative_bar']:.3g} below tail {tail:.3g} + bias")
+    return out
+
+
+def test_griffith_bars_carry_the_tail_estimate(table):
+    assert not tail_problems(table)
+    broken = copy.deepcopy(table)
+    # the bar before the tail estimate: the fits' spread and the circle's bias only
+    v = broken["faces"]["square"]["griffith"]["energy_release"]["quantities"]["pulloff_force"]
+    v["relative_bar"] = (v["model_spread"] + v["circle_bias"]) / v["value"]
+    assert tail_problems(broken)
+
+
+@pytest.mark.parametrize("grids", [(32, 45, 64, 90, 128), (45, 64, 90, 128), (64, 90, 128, 181, 256)])
+def test_griffith_uncertainty_bounds_power_laws_in_its_rate_bracket(grids):
+    """q = 1 +- N^-p: the extrapolation's uncertainty covers its error for every rate p in
+    GRIFFITH_RATES (and, as a conditional bound, not for a slower one), while the fits' spread
+    alone covers it only where p = 1 (a pure N^-0.75 over 45 ... 128: a factor 7 short)."""
+    script = _load_script()
+    N = np.array(grids, float)
+    lo, hi = script.GRIFFITH_RATES
+    for p in np.linspace(lo, hi, 9):
+        for sign in (1, -1):
+            e = script.extrapolate(N, 1 + sign * N**-p)
+            assert abs(e["value"] - 1) <= e["uncertainty"] * (1 + 1e-9), (p, sign)
+    e = script.extrapolate(N, 1 + N**-0.75)
+    assert abs(e["value"] - 1) > 3 * e["model_spread"]
+    e = script.extrapolate(N, 1 + N ** -(lo / 2))
+    assert abs(e["value"] - 1) > e["uncertainty"]
+
+
+def test_observed_order_of_power_laws():
+    """The order through the finest three grids is the power of a pure power law, negative for
+    steps that grow, and None where the steps differ in sign."""
+    script = _load_script()
+    N = np.array([45, 64, 90, 128], float)
+    for p in (-0.5, 0.5, 1.0, 2.5):
+        assert script.observed_order(N, 0.8 + 0.3 * N**-p) == pytest.approx(p, abs=1e-8)
+    assert script.observed_order(N, [1.0, 0.99, 0.995, 0.99]) is None
+    assert script.observed_order(N, [1.0, 1.0, 1.0, 1.0]) is None
+
+
+def test_tail_estimate_covers_kendall_where_the_criterion_converges(table):
+    """On Kendall's circle the tail estimate alone covers the procedure's error in the pull-off
+    force and the stiffness, in every window of the sweeps of the criteria that converge (the
+    paper criterion's plateau is not a tail: it is the bias every bar adds)."""
+    for key, check in table["check"].items():
+        if key.startswith("paper"):
+            continue
+        for w in check["windows"]:
+            for q in ("pulloff_force", "stiffness"):
+                err = w["errors"][q]
+                assert abs(err["error"]) <= err["tail_estimate"], (key, w["resolutions"], q)
+
+
 def energy_check_problems(doc: dict) -> list[str]:
     """The energy BEM's procedure on Kendall's circle (F_A / F_A,upper exactly 1), recomputed
     from its stored sequence: the limit and bar are what ``bem_energy.richardson`` gives, the
