@@ -259,6 +259,8 @@ def observed_order(N, q) -> float | None:
     step that grows from one grid to the next gives p < 0."""
     order = np.argsort(N)
     (n1, n2, n3), (q1, q2, q3) = np.asarray(N, float)[order][-3:], np.asarray(q, float)[order][-3:]
+    if not n1 < n2 < n3:
+        raise ValueError(f"observed_order needs three distinct grids, got {n1:g}, {n2:g}, {n3:g}")
     ratio = (q1 - q2) / (q2 - q3) if q2 != q3 else 0.0
     if not ratio > 0:
         return None

@@ -279,6 +279,8 @@ def test_observed_order_of_power_laws():
         assert script.observed_order(N, 0.8 + 0.3 * N**-p) == pytest.approx(p, abs=1e-8)
     assert script.observed_order(N, [1.0, 0.99, 0.995, 0.99]) is None
     assert script.observed_order(N, [1.0, 1.0, 1.0, 1.0]) is None
+    with pytest.raises(ValueError, match="distinct grids"):
+        script.observed_order([64, 128, 128], [1.0, 0.9, 0.8])
 
 
 def test_tail_estimate_covers_kendall_where_the_criterion_converges(table):
