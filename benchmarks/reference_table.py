@@ -568,8 +568,7 @@ def reference(qentry: dict) -> dict | None:
         return None
     if len(values) == 1 or qentry.get("agreement"):
         best = min(values, key=lambda v: v["relative_bar"])
-        out = {"value": best["value"], "relative_bar": best["relative_bar"], "method": best["method"]}
-        return out | ({"order_seen": best["order_seen"]} if "order_seen" in best else {})
+        return {k: best[k] for k in ("value", "relative_bar", "method", "order_seen") if k in best}
     low = min(v["value"] * (1 - v["relative_bar"]) for v in values)
     high = max(v["value"] * (1 + v["relative_bar"]) for v in values)
     mid = (low + high) / 2
@@ -578,6 +577,12 @@ def reference(qentry: dict) -> dict | None:
         "relative_bar": (high - low) / 2 / mid,
         "method": "the interval covering bem_griffith and bem_energy, which disagree",
     }
+
+
+def _column(v: dict) -> dict:
+    """A Griffith quantity as a column of a face's entry: value, bar and whether its sweep
+    showed the order the bar assumes."""
+    return {"value": v["value"], "relative_bar": v["relative_bar"], "order_seen": v["order_seen"]}
 
 
 def _capped_out(rows: list[dict]) -> list[float]:
@@ -631,21 +636,11 @@ def assemble(cache: Path, criterion: str, ratios=None) -> dict:
             e = energy.get(q) if energy else None
             qentry: dict = {"label": LABEL[q]}
             if g is not None:
-                qentry["bem_griffith"] = {
-                    "value": g["value"],
-                    "relative_bar": g["relative_bar"],
-                    "order_seen": g["order_seen"],
-                    "criterion": criterion,
-                }
+                qentry["bem_griffith"] = _column(g) | {"criterion": criterion}
             if e is not None:
                 qentry["bem_energy"] = {"value": e["value"], "relative_bar": e["relative_bar"]}
             for other in (g for c, g in grif.items() if c != criterion and g is not None):
-                o = other["quantities"][q]
-                qentry["bem_griffith_" + other["criterion"]] = {
-                    "value": o["value"],
-                    "relative_bar": o["relative_bar"],
-                    "order_seen": o["order_seen"],
-                }
+                qentry["bem_griffith_" + other["criterion"]] = _column(other["quantities"][q])
             agree = agreement(qentry.get("bem_griffith"), qentry.get("bem_energy"))
             if agree is not None:
                 qentry.update(agree)
@@ -788,7 +783,7 @@ def write(cache: Path, criterion: str, ratios=None) -> None:
             f"least-squares q0 + c/N over the finest {PRIMARY_POINTS} grids; bar = the larger of the fits' spread "
             f"(largest distance to q0 + c/N over the finest {PRIMARY_POINTS - 1} and {PRIMARY_POINTS + 1} grids and "
             f"q0 + c/N + e/N^2 over the finest {PRIMARY_POINTS + 1}) and the tail estimate (largest distance to the "
-            "limits the finest step allows for an error shrinking like N^-p, p in "
+            "limits the finest step allows for an error shrinking like N^-p, p "
             f">= {GRIFFITH_RATES[0]:g}), plus |error| of the same procedure on Kendall's circle (check); "
             "observed_order: the order of the finest three grids (None: their steps differ in sign); order_seen: "
             f"observed_order >= {GRIFFITH_RATES[0]:g}, the tail estimate's assumption seen in the data; "
