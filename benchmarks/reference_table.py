@@ -287,8 +287,8 @@ def extrapolate(N, q) -> dict:
     (``bem_energy.zero_range.tail_bracket`` with h = 1/N): a bound under that assumption, which
     the data support where the finest three grids show an order of at least its slow end
     (``order_seen``).  The spread alone bounds the error
-    only of a sequence that goes exactly like 1/N: for a pure N^-0.75 over 45 ... 128 per radius
-    it falls short by a factor 7 (tests/test_reference_table.py)."""
+    only of a sequence close to 1/N: for a pure N^-0.75 over 45 ... 128 per radius it falls
+    short by a factor 7 (tests/test_reference_table.py)."""
     order = np.argsort(N)
     N, q = np.asarray(N, float)[order], np.asarray(q, float)[order]
     n = PRIMARY_POINTS
