@@ -31,10 +31,11 @@ degrees to the grid) and for Kendall's circle, where the answer is known:
   (``observed_order``: negative where the steps still grow);
 * the energy BEM's zero-range limit (``bem_energy``, l_c / a = 0.08 ... 0.005 at two elements
   per l_c: the default sequence and one range finer, ``--ratios``), each finite range cached;
-  its pull-off bar is the extrapolation's own estimate (``bem_energy.richardson``), its
-  stiffness that of the finest grid with the method's stiffness bar; it gives no zero-range
-  approach.  The same sequence runs on Kendall's circle, whose error the table shows beside
-  the bar the estimate gives it.
+  a face whose finer halvings (``energy --ratios ... 0.0025``) have run, on it and on Kendall's
+  circle, continues its sequence by them.  Its pull-off bar is the extrapolation's own estimate
+  (``bem_energy.richardson``), its stiffness that of the finest grid with the method's
+  stiffness bar; it gives no zero-range approach.  Every sequence a face uses also runs on
+  Kendall's circle, whose error the table shows beside the bar the estimate gives it.
 
 Quantities are dimensionless: F_A / F_A,upper (Eq. 13), d(F_A) / d_c,upper (Eq. 14) and the
 stiffness K / (2 E* sqrt(A / pi)) (beta of Eq. 9), all at the nominal face area.  Two values of
@@ -200,8 +201,9 @@ def seed(cache: Path, doc: dict) -> dict[str, int]:
             put((CHECK, "griffith", criterion, point["N"]), row, "griffith")
     # (face, its default runs, its path noise): the check keeps its noise at the top level, a
     # face's energy entry inside its force
-    circle = doc.get("energy_check") or {}
-    energy_runs = [(CHECK, circle.get("runs"), circle.get("path_noise"))]
+    # a table written before the finer sequences has one check, under its older key
+    checks = doc.get("energy_checks") or [doc.get("energy_check") or {}]
+    energy_runs = [(CHECK, circle.get("runs"), circle.get("path_noise")) for circle in checks]
     for face, entry in faces.items():
         for criterion, sweep in entry.get("griffith", {}).items():
             for point in sweep["points"]:
@@ -413,6 +415,21 @@ def energy_limit(face: str, cache: Path, *, compute: bool = True, ratios=None, s
     }
 
 
+def energy_sequence(face: str, cache: Path, ratios=None) -> tuple[float, ...]:
+    """The process zones l_c / a of a face's zero-range limit: ``ratios`` (else the default
+    sequence), continued by every further halving whose run the cache holds both for the face
+    and for Kendall's circle.  A range finer than the sequence the others share joins a face's
+    limit only once the circle has run it too, since the estimate of a window ending there is
+    trusted only where the circle's known answer checks it (``energy_checks``)."""
+    zs = ZeroRangeSettings() if ratios is None else ZeroRangeSettings(ratios=tuple(ratios))
+    seq = list(zs.ratios)
+    while all(
+        cache_file(cache, f, "energy", seq[-1] / 2, zs.elements_per_process_zone).exists() for f in {face, CHECK}
+    ):
+        seq.append(seq[-1] / 2)
+    return tuple(seq)
+
+
 def path_noise(face: str, cache: Path, ratios, limit: dict) -> dict | None:
     """The spread of the zero-range limit over continuation step counts: the same sequence run
     with other ``EnergySettings.steps`` (``reference_table.py noise``) ends in other peeled
@@ -595,12 +612,14 @@ def _capped_out(rows: list[dict]) -> list[float]:
 def assemble(cache: Path, criterion: str, ratios=None) -> dict:
     checks: dict = {}
     faces = {}
+    base = ZeroRangeSettings().ratios if ratios is None else tuple(ratios)
+    sequences = {face: energy_sequence(face, cache, base) for face in FACES}
     for face in FACES:
         scene = face_scene(face)
         grif = {c: griffith_entry(cache, face, c, checks) for c in CRITERIA}
-        energy = energy_limit(face, cache, compute=False, ratios=ratios)
+        energy = energy_limit(face, cache, compute=False, ratios=sequences[face])
         if energy is not None:
-            energy = with_path_noise(energy, path_noise(face, cache, ratios, energy))
+            energy = with_path_noise(energy, path_noise(face, cache, sequences[face], energy))
         primary = grif.get(criterion)
         entry: dict = {
             "scene": face if face != "square_45" else "square rotated by 45 degrees (contact_scene.Transformed)",
@@ -657,7 +676,11 @@ def assemble(cache: Path, criterion: str, ratios=None) -> dict:
         faces[face] = entry
     return {
         "check": {k: v for k, v in checks.items() if v is not None},
-        "energy_check": energy_check(cache, ratios),
+        "energy_ratios": list(base),
+        # one check per sequence a face's limit uses (the shared one first)
+        "energy_checks": [
+            c for seq in sorted({base, *sequences.values()}, key=len) if (c := energy_check(cache, seq)) is not None
+        ],
         "rotation_check": rotation_check(faces),
         "faces": faces,
     }
@@ -702,6 +725,23 @@ def energy_check(cache: Path, ratios=None) -> dict | None:
         "settings": e["settings"],
         "runs": e["runs"],
     }
+
+
+def sequence_text(sequence: dict) -> str:
+    """A zero-range sequence's process zones, first and last: '0.08 ... 0.005'."""
+    r = sequence["process_zone_ratios"]
+    return f"{r[0]:g} ... {r[-1]:g}"
+
+
+def energy_cell(value: dict | None, energy: dict | None, shared) -> str:
+    """An energy limit's value and bar, with its finest process zone where its sequence goes
+    past the one the faces share."""
+    text = fmt(value)
+    if energy is not None:
+        r = energy["pulloff_force"]["sequence"]["process_zone_ratios"]
+        if len(r) > len(shared):
+            text += f" (l_c/a to {r[-1]:g})"
+    return text
 
 
 def noise_cell(energy: dict | None) -> str:
@@ -792,7 +832,9 @@ def write(cache: Path, criterion: str, ratios=None) -> None:
         ),
         "energy_procedure": (
             f"bem_energy zero-range limit, ZeroRangeSettings (l_c / a = {lcs} at "
-            f"{zs.elements_per_process_zone:g} elements per l_c, forces scaled to the nominal area, rate fitted); "
+            f"{zs.elements_per_process_zone:g} elements per l_c, forces scaled to the nominal area, rate fitted), "
+            "continued on a face by each further halving of l_c that has run on it and on Kendall's circle "
+            "(energy_checks: one check per sequence used); "
             "force bar = the extrapolation's "
             "estimate (bem_energy.richardson) plus, where measured, the largest change of the limit with the "
             "continuation's step count (path noise); stiffness = the finest grid's, with bem_energy's stiffness bar"
@@ -827,7 +869,7 @@ def write(cache: Path, criterion: str, ratios=None) -> None:
                 face,
                 ", ".join(f"{n:g}" for n in sweep["resolutions"]) if sweep else "-",
                 fmt(f.get("bem_griffith")),
-                fmt(f.get("bem_energy")),
+                energy_cell(f.get("bem_energy"), entry["energy"], table["energy_ratios"]),
                 noise_cell(entry["energy"]),
                 agree,
                 *(
@@ -856,11 +898,10 @@ def write(cache: Path, criterion: str, ratios=None) -> None:
                     "",
                 ]
             )
-    ec = table["energy_check"]
-    if ec is not None:
+    for ec in table["energy_checks"]:
         rows.append(
             [
-                "check: Kendall circle (energy BEM)",
+                f"check: Kendall circle (energy BEM, l_c/a {sequence_text(ec['sequence'])})",
                 "",
                 "",
                 f"error {100 * ec['error']:+.3f} % (bar {100 * ec['relative_bar']:.2g} %)",
