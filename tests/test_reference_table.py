@@ -297,50 +297,73 @@ def test_tail_estimate_covers_kendall_where_the_criterion_converges(table):
 
 
 def energy_check_problems(doc: dict) -> list[str]:
-    """The energy BEM's procedure on Kendall's circle (F_A / F_A,upper exactly 1), recomputed
-    from its stored sequence: the limit and bar are what ``bem_energy.richardson`` gives, the
-    error is the limit less 1, and the bar covers it (else the faces' bars from the same
-    procedure are not to be trusted)."""
+    """The energy BEM's procedure on Kendall's circle (F_A / F_A,upper exactly 1), once per
+    sequence of process zones a face uses, recomputed from its stored sequence: the limit and bar
+    are what ``bem_energy.richardson`` gives, the error is the limit less 1, and the bar covers it
+    (else the faces' bars from the same procedure are not to be trusted).  The shared sequence is
+    checked, and every face's sequence is one that was."""
     from bem_energy.zero_range import richardson
 
-    check = doc.get("energy_check")
-    if check is None:
+    checks = doc.get("energy_checks") or []
+    if not checks:
         return ["no energy check on Kendall's circle"]
-    seq = check["sequence"]
-    F0, _, est = richardson(np.array(seq["process_zone_ratios"]), np.array(seq["forces_at_nominal_area"]))
     out = []
-    stored = (check["value"], check["estimate"])
-    # the script fits this very sequence, so the refit repeats its arithmetic up to REFIT_RTOL; a
-    # 1 % change of one range moves the limit by ~1e-3
-    if not (math.isclose(F0, stored[0], rel_tol=REFIT_RTOL) and math.isclose(est / F0, stored[1], rel_tol=REFIT_RTOL)):
-        out.append(f"stored limit {stored[0]:.6g} +- {stored[1]:.3g}, its sequence gives {F0:.6g} +- {est / F0:.3g}")
-    if not math.isclose(check["error"], check["value"] - 1.0, rel_tol=1e-9, abs_tol=1e-15):
-        out.append(f"stored error {check['error']:.3g} is not the limit less 1")
-    bar = check["relative_bar"] * abs(F0)
-    if abs(F0 - 1.0) > bar:
-        out.append(f"the bar {bar:.3g} does not cover the known error {F0 - 1:+.3g}")
-    if check["covered"] is not (abs(F0 - 1.0) <= bar):
-        out.append("the covered flag is wrong")
-    ratios = seq["process_zone_ratios"]
-    for face, entry in doc["faces"].items():
-        if (
-            entry["energy"] is not None
-            and entry["energy"]["pulloff_force"]["sequence"]["process_zone_ratios"] != ratios
+    for check in checks:
+        seq = check["sequence"]
+        name = f"l_c/a to {seq['process_zone_ratios'][-1]:g}"
+        F0, _, est = richardson(np.array(seq["process_zone_ratios"]), np.array(seq["forces_at_nominal_area"]))
+        stored = (check["value"], check["estimate"])
+        # the script fits this very sequence, so the refit repeats its arithmetic up to REFIT_RTOL; a
+        # 1 % change of one range moves the limit by ~1e-3
+        if not (
+            math.isclose(F0, stored[0], rel_tol=REFIT_RTOL) and math.isclose(est / F0, stored[1], rel_tol=REFIT_RTOL)
         ):
-            out.append(f"{face}: its energy sequence is not the one checked on the circle")
+            out.append(
+                f"{name}: stored limit {stored[0]:.6g} +- {stored[1]:.3g}, "
+                f"its sequence gives {F0:.6g} +- {est / F0:.3g}"
+            )
+        if not math.isclose(check["error"], check["value"] - 1.0, rel_tol=1e-9, abs_tol=1e-15):
+            out.append(f"{name}: stored error {check['error']:.3g} is not the limit less 1")
+        bar = check["relative_bar"] * abs(F0)
+        if abs(F0 - 1.0) > bar:
+            out.append(f"{name}: the bar {bar:.3g} does not cover the known error {F0 - 1:+.3g}")
+        if check["covered"] is not (abs(F0 - 1.0) <= bar):
+            out.append(f"{name}: the covered flag is wrong")
+    checked = [c["sequence"]["process_zone_ratios"] for c in checks]
+    if doc["energy_ratios"] not in checked:
+        out.append("the shared sequence is not checked on the circle")
+    for face, entry in doc["faces"].items():
+        if entry["energy"] is not None:
+            ratios = entry["energy"]["pulloff_force"]["sequence"]["process_zone_ratios"]
+            if ratios not in checked:
+                out.append(f"{face}: its energy sequence is not one checked on the circle")
+            if ratios[: len(doc["energy_ratios"])] != doc["energy_ratios"]:
+                out.append(f"{face}: its energy sequence does not continue the shared one")
     return out
 
 
 def test_energy_procedure_check_on_kendall(table):
     assert not energy_check_problems(table)
+    for i in range(len(table["energy_checks"])):
+        broken = copy.deepcopy(table)
+        broken["energy_checks"][i]["sequence"]["forces_at_nominal_area"][-1] *= 0.99
+        assert energy_check_problems(broken)
+        broken = copy.deepcopy(table)
+        broken["energy_checks"][i]["estimate"] /= 4
+        assert energy_check_problems(broken)
+        broken = copy.deepcopy(table)
+        broken["energy_checks"][i]["relative_bar"] /= 4  # no longer covers the circle's known error
+        assert energy_check_problems(broken)
     broken = copy.deepcopy(table)
-    broken["energy_check"]["sequence"]["forces_at_nominal_area"][-1] *= 0.99
-    assert energy_check_problems(broken)
+    broken["energy_checks"] = broken["energy_checks"][:1]  # a face's finer sequence left unchecked
+    longest = max(
+        len(e["energy"]["pulloff_force"]["sequence"]["process_zone_ratios"])
+        for e in table["faces"].values()
+        if e["energy"]
+    )
+    assert bool(energy_check_problems(broken)) is (longest > len(table["energy_ratios"]))
     broken = copy.deepcopy(table)
-    broken["energy_check"]["estimate"] /= 4
-    assert energy_check_problems(broken)
-    broken = copy.deepcopy(table)
-    broken["energy_check"]["relative_bar"] /= 4  # no longer covers the circle's known error
+    broken["faces"]["square"]["energy"]["pulloff_force"]["sequence"]["process_zone_ratios"][-1] /= 3
     assert energy_check_problems(broken)
 
 
@@ -364,7 +387,7 @@ def energy_bar_problems(doc: dict) -> list[str]:
     measured: the largest change of the limit over the stored step counts, recomputed."""
     out = []
     entries = [(face, e["energy"]["pulloff_force"]) for face, e in doc["faces"].items() if e["energy"]]
-    entries.append(("Kendall circle", doc["energy_check"]))
+    entries += [("Kendall circle", check) for check in doc["energy_checks"]]
     for face, f in entries:
         noise = f["path_noise"]
         spread = 0.0
@@ -381,7 +404,7 @@ def energy_bar_problems(doc: dict) -> list[str]:
 
 def test_energy_bars_carry_the_path_noise(table):
     assert not energy_bar_problems(table)
-    assert table["energy_check"]["path_noise"] is not None  # measured where the answer is known
+    assert table["energy_checks"][0]["path_noise"] is not None  # measured where the answer is known
     broken = copy.deepcopy(table)
     for entry in broken["faces"].values():
         if entry["energy"] and entry["energy"]["pulloff_force"]["path_noise"]:
@@ -435,7 +458,7 @@ def rebuilt_problems(doc: dict, cache: Path) -> list[str]:
     so that a new part (a face's path noise) can be added without redoing the rest."""
     script = _load_script()
     script.seed(cache, doc)
-    rebuilt = script.assemble(cache, doc["reference_criterion"], doc["energy_check"]["sequence"]["process_zone_ratios"])
+    rebuilt = script.assemble(cache, doc["reference_criterion"], doc["energy_ratios"])
     out = []
     for face, entry in doc["faces"].items():
         for q, qe in entry["quantities"].items():
@@ -452,15 +475,17 @@ def rebuilt_problems(doc: dict, cache: Path) -> list[str]:
                     same = v == w
                 if not same:
                     out.append(f"{face} {q} {key}: stored {v!r}, its runs give {w!r}")
-    check, again = doc["energy_check"], rebuilt["energy_check"]
-    for k in ("value", "relative_bar", "covered"):
-        if again is None or check[k] != pytest.approx(again[k], rel=REFIT_RTOL):
-            out.append(f"energy check {k}: stored {check[k]!r}, its runs give {again and again[k]!r}")
+    if len(rebuilt["energy_checks"]) != len(doc["energy_checks"]):
+        out.append(f"{len(doc['energy_checks'])} energy checks stored, its runs give {len(rebuilt['energy_checks'])}")
+    for check, again in zip(doc["energy_checks"], rebuilt["energy_checks"], strict=False):
+        for k in ("value", "relative_bar", "covered"):
+            if check[k] != pytest.approx(again[k], rel=REFIT_RTOL):
+                out.append(f"energy check {k}: stored {check[k]!r}, its runs give {again[k]!r}")
     return out
 
 
 def test_table_is_its_own_cache(table, tmp_path):
-    energy = [e["energy"] for e in table["faces"].values() if e["energy"]] + [table["energy_check"]]
+    energy = [e["energy"] for e in table["faces"].values() if e["energy"]] + table["energy_checks"]
     if not all("runs" in e for e in energy):
         pytest.fail("faces.json does not store the energy runs it was assembled from")
     assert not rebuilt_problems(table, tmp_path / "cache")
