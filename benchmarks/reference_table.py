@@ -31,8 +31,9 @@ degrees to the grid) and for Kendall's circle, where the answer is known:
   (``observed_order``: negative where the steps still grow);
 * the energy BEM's zero-range limit (``bem_energy``, l_c / a = 0.08 ... 0.005 at two elements
   per l_c: the default sequence and one range finer, ``--ratios``), each finite range cached;
-  a face whose finer halvings (``energy --ratios ... 0.0025``) have run, on it and on Kendall's
-  circle, continues its sequence by them.  Its pull-off bar is the extrapolation's own estimate
+  a face whose finer halvings (``energy --ratios ... 0.0025``, and ``noise`` with the same
+  ratios where its path noise was measured) have run, on it and on Kendall's circle,
+  continues its sequence by them.  Its pull-off bar is the extrapolation's own estimate
   (``bem_energy.richardson``), its stiffness that of the finest grid with the method's
   stiffness bar; it gives no zero-range approach.  Every sequence a face uses also runs on
   Kendall's circle, whose error the table shows beside the bar the estimate gives it.
@@ -415,17 +416,31 @@ def energy_limit(face: str, cache: Path, *, compute: bool = True, ratios=None, s
     }
 
 
+def noise_step_counts(face: str, cache: Path, ratios=None) -> list[int]:
+    """The continuation step counts of the path-noise runs the cache holds for a face's
+    sequence (keyed by its first range)."""
+    zs = ZeroRangeSettings(ratios=tuple(ratios)) if ratios is not None else ZeroRangeSettings()
+    first = cache_file(cache, face, "energy", zs.ratios[0], zs.elements_per_process_zone)
+    return sorted({int(p.stem.rsplit("steps", 1)[1]) for p in cache.glob(f"{first.stem}__steps*.json")})
+
+
 def energy_sequence(face: str, cache: Path, ratios=None) -> tuple[float, ...]:
     """The process zones l_c / a of a face's zero-range limit: ``ratios`` (else the default
-    sequence), continued by every further halving whose run the cache holds both for the face
-    and for Kendall's circle.  A range finer than the sequence the others share joins a face's
-    limit only once the circle has run it too, since the estimate of a window ending there is
-    trusted only where the circle's known answer checks it (``energy_checks``)."""
+    sequence), continued by every further halving whose runs the cache holds, for the face and
+    for Kendall's circle, at the default step count and at each step count of their path-noise
+    runs.  A range finer than the sequence the others share joins a face's limit only once the
+    circle has run it too, since the estimate of a window ending there is trusted only where the
+    circle's known answer checks it (``energy_checks``), and only with the runs that measure its
+    path noise, so that a finer range never drops a part of the bar that was measured."""
     zs = ZeroRangeSettings() if ratios is None else ZeroRangeSettings(ratios=tuple(ratios))
     seq = list(zs.ratios)
-    while all(
-        cache_file(cache, f, "energy", seq[-1] / 2, zs.elements_per_process_zone).exists() for f in {face, CHECK}
-    ):
+    counts = {f: noise_step_counts(f, cache, seq) for f in {face, CHECK}}
+
+    def ran(f: str, r: float) -> bool:
+        key = (f, "energy", r, zs.elements_per_process_zone)
+        return all(cache_file(cache, *key, *([f"steps{n}"] if n else [])).exists() for n in [None, *counts[f]])
+
+    while ran(face, seq[-1] / 2) and ran(CHECK, seq[-1] / 2):
         seq.append(seq[-1] / 2)
     return tuple(seq)
 
@@ -437,10 +452,8 @@ def path_noise(face: str, cache: Path, ratios, limit: dict) -> dict | None:
     extrapolation carries it into the limit.  The largest relative change of the limit against
     the default's, with every limit; None when no other step count is in the cache."""
     zs = ZeroRangeSettings(ratios=tuple(ratios)) if ratios is not None else ZeroRangeSettings()
-    first = cache_file(cache, face, "energy", zs.ratios[0], zs.elements_per_process_zone)
-    counts = sorted({int(p.stem.rsplit("steps", 1)[1]) for p in cache.glob(f"{first.stem}__steps*.json")})
     limits, runs = {}, {}
-    for n in counts:
+    for n in noise_step_counts(face, cache, ratios):
         other = energy_limit(face, cache, compute=False, ratios=ratios, steps=n)
         if other is not None and other["converged"]:
             limits[n] = other["pulloff_force"]["value"]
