@@ -495,11 +495,48 @@ def test_table_is_its_own_cache(table, tmp_path):
     broken = copy.deepcopy(table)
     broken["faces"]["square"]["griffith"]["paper"]["points"][-1]["normalised"]["pulloff_force"] *= 1.005
     assert rebuilt_problems(broken, tmp_path / "broken_griffith")
-    broken = copy.deepcopy(table)  # a path-noise run reaches the square's bar
-    next(iter(broken["faces"]["square"]["energy"]["pulloff_force"]["path_noise"]["runs"].values()))[-1][
-        "pulloff_force"
-    ] *= 1.01
+    broken = copy.deepcopy(table)  # a path-noise run reaches the face's bar
+    noisy = next(
+        e["energy"]["pulloff_force"]
+        for e in broken["faces"].values()
+        if e["energy"] and e["energy"]["pulloff_force"]["path_noise"]
+    )
+    next(iter(noisy["path_noise"]["runs"].values()))[-1]["pulloff_force"] *= 1.01
     assert rebuilt_problems(broken, tmp_path / "broken_noise")
+
+
+def test_a_finer_range_joins_a_face_only_with_its_check_and_its_noise(tmp_path):
+    """A face's zero-range sequence continues past the shared one by a halving only when the cache
+    holds that range for the face and for Kendall's circle, at the default step count and at each
+    step count its path noise was measured with: a window the circle has not checked, or a limit
+    whose noise would go unmeasured, stays out."""
+    script = _load_script()
+    shared = (0.08, 0.04, 0.02, 0.01, 0.005)
+    zone = script.ZeroRangeSettings().elements_per_process_zone
+
+    def run(face, r, steps=None):
+        path = script.cache_file(tmp_path, face, "energy", r, zone, *([f"steps{steps}"] if steps else []))
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text("{}")
+
+    for face in ("square", script.CHECK):
+        for r in shared:
+            run(face, r)
+            run(face, r, 36)
+    assert script.energy_sequence("square", tmp_path, shared) == shared
+    run("square", 0.0025)
+    run("square", 0.0025, 36)
+    assert script.energy_sequence("square", tmp_path, shared) == shared  # the circle has not run it
+    run(script.CHECK, 0.0025)
+    assert script.energy_sequence("square", tmp_path, shared) == shared  # nor its noise
+    run(script.CHECK, 0.0025, 36)
+    assert script.energy_sequence("square", tmp_path, shared) == (*shared, 0.0025)
+    for r in (0.02, 0.01, 0.005, 0.0025):
+        run("triangle", r)
+    assert script.energy_sequence("triangle", tmp_path, (0.02, 0.01, 0.005)) == (0.02, 0.01, 0.005, 0.0025)
+    for r in shared:
+        run("triangle", r, 44)
+    assert script.energy_sequence("triangle", tmp_path, shared) == shared  # its noise at 0.0025 missing
 
 
 def test_points_decided_by_the_nucleation_cap_stay_out_of_the_fit(tmp_path):
