@@ -846,8 +846,8 @@ def write(cache: Path, criterion: str, ratios=None) -> None:
         "energy_procedure": (
             f"bem_energy zero-range limit, ZeroRangeSettings (l_c / a = {lcs} at "
             f"{zs.elements_per_process_zone:g} elements per l_c, forces scaled to the nominal area, rate fitted), "
-            "continued on a face by each further halving of l_c that has run on it and on Kendall's circle "
-            "(energy_checks: one check per sequence used); "
+            "continued on a face by each further halving of l_c that has run on it and on Kendall's circle, "
+            "with their path-noise runs (energy_checks: one check per sequence used); "
             "force bar = the extrapolation's "
             "estimate (bem_energy.richardson) plus, where measured, the largest change of the limit with the "
             "continuation's step count (path noise); stiffness = the finest grid's, with bem_energy's stiffness bar"
