@@ -436,13 +436,23 @@ def energy_sequence(face: str, cache: Path, ratios=None) -> tuple[float, ...]:
     seq = list(zs.ratios)
     counts = {f: noise_step_counts(f, cache, seq) for f in {face, CHECK}}
 
-    def ran(f: str, r: float) -> bool:
-        key = (f, "energy", r, zs.elements_per_process_zone)
-        return all(cache_file(cache, *key, *([f"steps{n}"] if n else [])).exists() for n in [None, *counts[f]])
+    def missing(f: str, r: float) -> list[str]:
+        """The runs of range r that face f lacks (absent, or not converged)."""
+        out = []
+        for n in [None, *counts[f]]:
+            path = cache_file(cache, f, "energy", r, zs.elements_per_process_zone, *([f"steps{n}"] if n else []))
+            if not path.exists() or not json.loads(path.read_text()).get("converged", False):
+                out.append(f"{f}{'' if n is None else f' at {n} steps'}")
+        return out
 
-    while ran(face, seq[-1] / 2) and ran(CHECK, seq[-1] / 2):
-        seq.append(seq[-1] / 2)
-    return tuple(seq)
+    while True:
+        r = seq[-1] / 2
+        lacking = missing(face, r) + missing(CHECK, r)
+        if lacking:
+            if len(lacking) < 2 + len(counts[face]) + len(counts[CHECK]):  # some of it ran: say why it stays out
+                print(f"{face}: l_c/a = {r:g} not used; no converged run of {', '.join(lacking)}", flush=True)
+            return tuple(seq)
+        seq.append(r)
 
 
 def path_noise(face: str, cache: Path, ratios, limit: dict) -> dict | None:
@@ -691,9 +701,7 @@ def assemble(cache: Path, criterion: str, ratios=None) -> dict:
         "check": {k: v for k, v in checks.items() if v is not None},
         "energy_ratios": list(base),
         # one check per sequence a face's limit uses (the shared one first)
-        "energy_checks": [
-            c for seq in sorted({base, *sequences.values()}, key=len) if (c := energy_check(cache, seq)) is not None
-        ],
+        "energy_checks": energy_checks(cache, base, sequences),
         "rotation_check": rotation_check(faces),
         "faces": faces,
     }
@@ -715,6 +723,20 @@ def rotation_check(faces: dict) -> dict:
     return out
 
 
+def energy_checks(cache: Path, base: tuple, sequences: dict) -> list[dict]:
+    """The circle's check of the shared sequence and of every longer one a face uses (a face's
+    sequence is continued only where the circle's runs exist, so only the shared one can be
+    missing: the circle's sequence has not run)."""
+    out = []
+    for seq in sorted({base, *sequences.values()}, key=len):
+        check = energy_check(cache, seq)
+        if check is None:
+            print(f"{CHECK}: no energy check of l_c/a = {', '.join(f'{r:g}' for r in seq)} (not in the cache)")
+        else:
+            out.append(check)
+    return out
+
+
 def energy_check(cache: Path, ratios=None) -> dict | None:
     """The energy BEM's zero-range procedure (the same sequence as the faces') on Kendall's
     circle, where F_A / F_A,upper is exactly 1: its error, and whether its own bar covers it.
@@ -727,6 +749,7 @@ def energy_check(cache: Path, ratios=None) -> dict | None:
     f = e["pulloff_force"]
     error = f["value"] - 1.0
     return {
+        "converged": e["converged"],
         "value": f["value"],
         "relative_bar": f["relative_bar"],
         "error": error,
@@ -747,8 +770,8 @@ def sequence_text(sequence: dict) -> str:
 
 
 def energy_cell(value: dict | None, energy: dict | None, shared) -> str:
-    """An energy limit's value and bar, with its finest process zone where its sequence goes
-    past the one the faces share."""
+    """An energy value and bar (a zero-range force, or the stiffness of the finest range's grid),
+    with the finest process zone where the face's sequence goes past the one the faces share."""
     text = fmt(value)
     if energy is not None:
         r = energy["pulloff_force"]["sequence"]["process_zone_ratios"]
@@ -891,7 +914,7 @@ def write(cache: Path, criterion: str, ratios=None) -> None:
                 ),
                 fmt(qs["pulloff_approach"].get("bem_griffith")),
                 fmt(qs["stiffness"].get("bem_griffith")),
-                fmt(qs["stiffness"].get("bem_energy")),
+                energy_cell(qs["stiffness"].get("bem_energy"), entry["energy"], table["energy_ratios"]),
             ]
         )
     for c, v in table["check"].items():
@@ -990,7 +1013,11 @@ def main(argv=None) -> None:
         nargs="+",
         type=float,
         default=ENERGY_RATIOS,
-        help=f"the energy BEM's process zones l_c / a (energy and write; default: {' '.join(map(str, ENERGY_RATIOS))})",
+        help=(
+            f"the energy BEM's process zones l_c / a (energy, noise and write; default: "
+            f"{' '.join(map(str, ENERGY_RATIOS))}); write continues a face's sequence by the further halvings "
+            "that ran on it and on Kendall's circle, with their noise runs"
+        ),
     )
     args = p.parse_args(argv)
     resolutions = [int(N) if float(N).is_integer() else N for N in args.resolutions]
