@@ -447,9 +447,10 @@ def energy_sequence(face: str, cache: Path, ratios=None) -> tuple[float, ...]:
 
     while True:
         r = seq[-1] / 2
-        lacking = missing(face, r) + missing(CHECK, r)
+        own = missing(face, r)
+        lacking = own + missing(CHECK, r)
         if lacking:
-            if len(lacking) < 2 + len(counts[face]) + len(counts[CHECK]):  # some of it ran: say why it stays out
+            if len(own) < 1 + len(counts[face]):  # the face ran some of it: say why it stays out
                 print(f"{face}: l_c/a = {r:g} not used; no converged run of {', '.join(lacking)}", flush=True)
             return tuple(seq)
         seq.append(r)
