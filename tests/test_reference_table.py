@@ -329,6 +329,8 @@ def energy_check_problems(doc: dict) -> list[str]:
             out.append(f"{name}: the bar {bar:.3g} does not cover the known error {F0 - 1:+.3g}")
         if check["covered"] is not (abs(F0 - 1.0) <= bar):
             out.append(f"{name}: the covered flag is wrong")
+        if check.get("converged") is not True:
+            out.append(f"{name}: not every run of the circle's sequence converged")
     checked = [c["sequence"]["process_zone_ratios"] for c in checks]
     if doc["energy_ratios"] not in checked:
         out.append("the shared sequence is not checked on the circle")
@@ -343,6 +345,8 @@ def energy_check_problems(doc: dict) -> list[str]:
 
 
 def test_energy_procedure_check_on_kendall(table):
+    from bem_energy.zero_range import richardson
+
     assert not energy_check_problems(table)
     for i in range(len(table["energy_checks"])):
         broken = copy.deepcopy(table)
@@ -364,6 +368,26 @@ def test_energy_procedure_check_on_kendall(table):
     assert bool(energy_check_problems(broken)) is (longest > len(table["energy_ratios"]))
     broken = copy.deepcopy(table)
     broken["faces"]["square"]["energy"]["pulloff_force"]["sequence"]["process_zone_ratios"][-1] /= 3
+    assert energy_check_problems(broken)
+    broken = copy.deepcopy(table)  # the shared sequence's check dropped
+    broken["energy_checks"] = broken["energy_checks"][1:]
+    assert energy_check_problems(broken)
+    broken = copy.deepcopy(table)  # a face on a checked sequence that does not continue the shared one
+    other = copy.deepcopy(broken["energy_checks"][0])
+    other["sequence"]["process_zone_ratios"] = other["sequence"]["process_zone_ratios"][1:]
+    other["sequence"]["forces_at_nominal_area"] = other["sequence"]["forces_at_nominal_area"][1:]
+    F0, _, est = richardson(
+        np.array(other["sequence"]["process_zone_ratios"]), np.array(other["sequence"]["forces_at_nominal_area"])
+    )
+    other.update(value=F0, estimate=est / F0, relative_bar=est / F0 * 1.5, error=F0 - 1.0)
+    other["covered"] = abs(F0 - 1.0) <= other["relative_bar"] * abs(F0)
+    broken["energy_checks"].append(other)
+    assert energy_check_problems(broken) == []  # a check of its own is no problem while no face uses it
+    seq = broken["faces"]["star"]["energy"]["pulloff_force"]["sequence"]
+    seq["process_zone_ratios"] = other["sequence"]["process_zone_ratios"]
+    assert energy_check_problems(broken) == ["star: its energy sequence does not continue the shared one"]
+    broken = copy.deepcopy(table)
+    broken["energy_checks"][-1]["converged"] = False
     assert energy_check_problems(broken)
 
 
@@ -507,30 +531,44 @@ def test_table_is_its_own_cache(table, tmp_path):
 
 def test_a_finer_range_joins_a_face_only_with_its_check_and_its_noise(tmp_path):
     """A face's zero-range sequence continues past the shared one by a halving only when the cache
-    holds that range for the face and for Kendall's circle, at the default step count and at each
-    step count its path noise was measured with: a window the circle has not checked, or a limit
-    whose noise would go unmeasured, stays out."""
+    holds converged runs of that range for the face and for Kendall's circle, each at the default
+    step count and at every step count its own path noise was measured with: a window the circle
+    has not checked, or a limit or check whose noise would go unmeasured, stays out."""
     script = _load_script()
     shared = (0.08, 0.04, 0.02, 0.01, 0.005)
     zone = script.ZeroRangeSettings().elements_per_process_zone
 
-    def run(face, r, steps=None):
+    def run(face, r, steps=None, converged=True):
         path = script.cache_file(tmp_path, face, "energy", r, zone, *([f"steps{steps}"] if steps else []))
         path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text("{}")
+        path.write_text(json.dumps({"converged": converged}))
 
     for face in ("square", script.CHECK):
         for r in shared:
             run(face, r)
             run(face, r, 36)
+    for r in shared:
+        run(script.CHECK, r, 44)  # the circle's noise also at a step count the square lacks
     assert script.energy_sequence("square", tmp_path, shared) == shared
     run("square", 0.0025)
     run("square", 0.0025, 36)
     assert script.energy_sequence("square", tmp_path, shared) == shared  # the circle has not run it
     run(script.CHECK, 0.0025)
-    assert script.energy_sequence("square", tmp_path, shared) == shared  # nor its noise
     run(script.CHECK, 0.0025, 36)
+    assert script.energy_sequence("square", tmp_path, shared) == shared  # nor its own 44-step noise
+    run(script.CHECK, 0.0025, 44, converged=False)
+    assert script.energy_sequence("square", tmp_path, shared) == shared  # which did not converge
+    run(script.CHECK, 0.0025, 44)
     assert script.energy_sequence("square", tmp_path, shared) == (*shared, 0.0025)
+    run("square", 0.0025, converged=False)
+    assert script.energy_sequence("square", tmp_path, shared) == shared  # the face's own run unconverged
+    run("square", 0.0025)
+    for steps in (None, 36, 44):
+        run(script.CHECK, 0.00125, steps)
+    run("square", 0.00125, 36)
+    assert script.energy_sequence("square", tmp_path, shared) == (*shared, 0.0025)  # noise alone is not a range
+    run("square", 0.00125)
+    assert script.energy_sequence("square", tmp_path, shared) == (*shared, 0.0025, 0.00125)  # two halvings
     for r in (0.02, 0.01, 0.005, 0.0025):
         run("triangle", r)
     assert script.energy_sequence("triangle", tmp_path, (0.02, 0.01, 0.005)) == (0.02, 0.01, 0.005, 0.0025)
