@@ -426,9 +426,9 @@ def noise_step_counts(face: str, cache: Path, ratios=None) -> list[int]:
 
 def energy_sequence(face: str, cache: Path, ratios=None) -> tuple[float, ...]:
     """The process zones l_c / a of a face's zero-range limit: ``ratios`` (else the default
-    sequence), continued by every further halving whose runs the cache holds, for the face and
-    for Kendall's circle, at the default step count and at each step count of their path-noise
-    runs.  A range finer than the sequence the others share joins a face's limit only once the
+    sequence), continued by every further halving whose converged runs the cache holds, for the
+    face and for Kendall's circle, at the default step count and at each step count of their
+    path-noise runs.  A range finer than the sequence the others share joins a face's limit only once the
     circle has run it too, since the estimate of a window ending there is trusted only where the
     circle's known answer checks it (``energy_checks``), and only with the runs that measure its
     path noise, so that a finer range never drops a part of the bar that was measured."""
