@@ -155,6 +155,14 @@ def bounds(scene: cs.Scene) -> tuple[float, float]:
 cache_file, cached = _timing.cache_file, _timing.cached
 
 
+def energy_key(face: str, ratio: float, zone: float, steps: int | str | None = None) -> tuple:
+    """The cache key of one energy range: a face's run at process zone ``ratio`` (l_c / a) with
+    ``zone`` elements per l_c (a float, as ZeroRangeSettings holds it), at the default step count
+    or, for a path-noise run, at ``steps``."""
+    key: tuple = (face, "energy", ratio, zone)
+    return key if steps is None else (*key, f"steps{steps}")
+
+
 def seed(cache: Path, doc: dict) -> dict[str, int]:
     """Write the runs a table ``doc`` (faces.json) stores into ``cache`` as cache rows, so that
     ``write`` re-assembles the table, with new runs added beside (a face's path noise, say),
@@ -191,9 +199,8 @@ def seed(cache: Path, doc: dict) -> dict[str, int]:
 
     def put_energy(face: str, runs, steps: str | None = None) -> None:
         for run in runs:
-            # the key energy_limit looks up: the zone count as ZeroRangeSettings holds it (a float)
-            key: tuple = (face, "energy", run["ratio"], float(run.get("elements_per_process_zone", default_zone)))
-            put(key if steps is None else (*key, f"steps{steps}"), run, "energy")
+            zone = float(run.get("elements_per_process_zone", default_zone))
+            put(energy_key(face, run["ratio"], zone, steps), run, "energy")
 
     for key, check in doc.get("check", {}).items():
         criterion = key.split(",")[0]
@@ -371,9 +378,7 @@ def energy_limit(face: str, cache: Path, *, compute: bool = True, ratios=None, s
     scene = face_scene(face)
     runs = []
     for r in zs.ratios:
-        key: tuple = (face, "energy", r, zs.elements_per_process_zone)
-        if steps is not None:
-            key = (*key, f"steps{steps}")
+        key = energy_key(face, r, zs.elements_per_process_zone, steps)
         if not compute and not cache_file(cache, *key).exists():
             return None
         row = cached(cache, key, lambda r=r: energy_range(face, r, zs))
@@ -420,7 +425,7 @@ def noise_step_counts(face: str, cache: Path, ratios=None) -> list[int]:
     """The continuation step counts of the path-noise runs the cache holds for a face's
     sequence (keyed by its first range)."""
     zs = ZeroRangeSettings(ratios=tuple(ratios)) if ratios is not None else ZeroRangeSettings()
-    first = cache_file(cache, face, "energy", zs.ratios[0], zs.elements_per_process_zone)
+    first = cache_file(cache, *energy_key(face, zs.ratios[0], zs.elements_per_process_zone))
     return sorted({int(p.stem.rsplit("steps", 1)[1]) for p in cache.glob(f"{first.stem}__steps*.json")})
 
 
@@ -440,7 +445,7 @@ def energy_sequence(face: str, cache: Path, ratios=None) -> tuple[float, ...]:
         """The runs of range r that face f lacks (absent, or not converged)."""
         out = []
         for n in [None, *counts[f]]:
-            path = cache_file(cache, f, "energy", r, zs.elements_per_process_zone, *([f"steps{n}"] if n else []))
+            path = cache_file(cache, *energy_key(f, r, zs.elements_per_process_zone, n))
             if not path.exists() or not json.loads(path.read_text()).get("converged", False):
                 out.append(f"{f}{'' if n is None else f' at {n} steps'}")
         return out
