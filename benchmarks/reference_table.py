@@ -425,8 +425,8 @@ def noise_step_counts(face: str, cache: Path, ratios=None) -> list[int]:
     """The continuation step counts of the path-noise runs the cache holds for a face's
     sequence (keyed by its first range)."""
     zs = ZeroRangeSettings(ratios=tuple(ratios)) if ratios is not None else ZeroRangeSettings()
-    first = cache_file(cache, *energy_key(face, zs.ratios[0], zs.elements_per_process_zone))
-    return sorted({int(p.stem.rsplit("steps", 1)[1]) for p in cache.glob(f"{first.stem}__steps*.json")})
+    pattern = cache_file(cache, *energy_key(face, zs.ratios[0], zs.elements_per_process_zone, "*")).name
+    return sorted({int(p.stem.rsplit("steps", 1)[1]) for p in cache.glob(pattern)})
 
 
 def energy_sequence(face: str, cache: Path, ratios=None) -> tuple[float, ...]:
